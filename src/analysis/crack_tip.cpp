@@ -1,0 +1,102 @@
+#include "analysis/crack_tip.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace periadapt {
+
+namespace {
+Vec3 transverse_of(const Vec3& d) { return {-d[1], d[0], 0.0}; }
+}  // namespace
+
+std::optional<TipSample> CrackTipTracker::observe(const NodeSet& ns, double t) {
+  const Vec3 dir = opt_.direction;
+  const Vec3 nrm = transverse_of(dir);
+  double best = -INFINITY, best_tr = 0;
+  std::size_t best_i = ns.size();
+  for (std::size_t i = 0; i < ns.size(); ++i) {
+    if (!(ns.flags[i] & kActive) || ns.damage(i) <= opt_.threshold) continue;
+    const Vec3 p{ns.x[0][i], ns.x[1][i], ns.x[2][i]};
+    const Vec3 r = sub(p, opt_.origin);
+    const double tr = dot(r, nrm);
+    // Half a cell of slack keeps the row just across a straight crack line on both sides.
+    if (opt_.side == CrackTipOptions::Side::Upper && tr < -0.5 * opt_.column) continue;
+    if (opt_.side == CrackTipOptions::Side::Lower && tr > 0.5 * opt_.column) continue;
+    const double adv = dot(r, dir);
+    // Ties (symmetric branches) go to the larger transverse coordinate, deterministically.
+    if (adv > best + 1e-12 || (std::abs(adv - best) <= 1e-12 && tr > best_tr)) {
+      best = adv;
+      best_tr = tr;
+      best_i = i;
+    }
+  }
+  if (best_i == ns.size()) return std::nullopt;
+  TipSample s{t, {ns.x[0][best_i], ns.x[1][best_i], ns.x[2][best_i]}, best};
+  samples_.push_back(s);
+  if (!initiation_ && s.advance > opt_.advance) initiation_ = t;
+  if (!window_start_) window_start_ = s;
+  if (t - window_start_->time >= opt_.window * (1 - 1e-9)) {
+    const double v = norm(sub(s.position, window_start_->position)) / (t - window_start_->time);
+    window_speeds_.push_back({0.5 * (t + window_start_->time), v});
+    current_speed_ = v;
+    window_start_ = s;
+  }
+  if (!branching_time_ && initiation_) detect_branching(ns, t);
+  return s;
+}
+
+void CrackTipTracker::detect_branching(const NodeSet& ns, double t) {
+  if (ns.dim != 2 || opt_.column <= 0 || opt_.branch_gap <= 0) return;
+  const Vec3 dir = opt_.direction;
+  const Vec3 nrm = transverse_of(dir);
+  // Cross-sections ahead of the initial tip: transverse coordinates of damaged nodes.
+  std::map<long, std::vector<double>> columns;
+  for (std::size_t i = 0; i < ns.size(); ++i) {
+    if (!(ns.flags[i] & kActive) || ns.damage(i) <= opt_.threshold) continue;
+    const Vec3 r = sub({ns.x[0][i], ns.x[1][i], ns.x[2][i]}, opt_.origin);
+    const double adv = dot(r, dir);
+    if (adv <= 0) continue;
+    columns[static_cast<long>(std::floor(adv / opt_.column))].push_back(dot(r, nrm));
+  }
+  for (auto& [col, tr] : columns) {
+    std::sort(tr.begin(), tr.end());
+    for (std::size_t k = 1; k < tr.size(); ++k) {
+      if (tr[k] - tr[k - 1] > opt_.branch_gap) {
+        branching_time_ = t;
+        const double adv = (static_cast<double>(col) + 0.5) * opt_.column;
+        branching_point_ = add(opt_.origin, scale(dir, adv));
+        return;
+      }
+    }
+  }
+}
+
+double CrackTipTracker::mean_speed() const {
+  if (!initiation_) return 0.0;
+  // Windows after initiation, up to the last one in which the tip still moved.
+  std::size_t last = 0;
+  bool any = false;
+  for (std::size_t k = 0; k < window_speeds_.size(); ++k)
+    if (window_speeds_[k][0] >= *initiation_ && window_speeds_[k][1] > 0) {
+      last = k;
+      any = true;
+    }
+  if (!any) return 0.0;
+  double sum = 0;
+  int cnt = 0;
+  for (std::size_t k = 0; k <= last; ++k)
+    if (window_speeds_[k][0] >= *initiation_) {
+      sum += window_speeds_[k][1];
+      ++cnt;
+    }
+  return cnt ? sum / cnt : 0.0;
+}
+
+double CrackTipTracker::max_speed() const {
+  double m = 0;
+  for (const auto& w : window_speeds_) m = std::max(m, w[1]);
+  return m;
+}
+
+}  // namespace periadapt

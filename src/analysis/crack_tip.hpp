@@ -1,0 +1,62 @@
+#pragma once
+// Crack-tip tracking (Ha & Bobaru; thesis 6.1): the tip is the damaged node (damage above a
+// threshold, default 0.35) farthest ahead along the crack direction; tip speed by Eq. 6.1 over
+// fixed time windows. Also detects branching: a cross-section of the damaged zone, normal to the
+// crack direction, that splits into two bands separated by more than a gap.
+#include <array>
+#include <optional>
+#include <vector>
+
+#include "core/geometry.hpp"
+#include "core/node_set.hpp"
+
+namespace periadapt {
+
+struct CrackTipOptions {
+  double threshold = 0.35;
+  Vec3 origin{0, 0, 0};      // initial tip (pre-crack end)
+  Vec3 direction{1, 0, 0};   // expected propagation direction (unit)
+  enum class Side { Both, Upper, Lower } side = Side::Both;  // restrict to one side (2D)
+  double window = 2e-6;      // speed window (s)
+  double advance = 0.0;      // tip must move this far ahead of the origin to count as started
+  double branch_gap = 0.0;   // bands farther apart than this count as two branches
+  double column = 0.0;       // width of the cross-sections used for branch detection
+};
+
+struct TipSample {
+  double time;
+  Vec3 position;
+  double advance;  // projection on the direction, from the origin
+};
+
+class CrackTipTracker {
+ public:
+  explicit CrackTipTracker(const CrackTipOptions& opt) : opt_(opt) {}
+
+  // Records the tip at time t; returns the sample (nullopt when no node is damaged enough).
+  std::optional<TipSample> observe(const NodeSet& nodes, double t);
+
+  // Windowed speed at the most recent sample (Eq. 6.1), 0 before the first full window.
+  double current_speed() const { return current_speed_; }
+  std::optional<double> initiation_time() const { return initiation_; }
+  std::optional<double> branching_time() const { return branching_time_; }
+  std::optional<Vec3> branching_point() const { return branching_point_; }
+  const std::vector<TipSample>& path() const { return samples_; }
+  // Window speeds (t_mid, v) over the whole run.
+  const std::vector<std::array<double, 2>>& speeds() const { return window_speeds_; }
+  double mean_speed() const;   // mean over windows after initiation while the tip moves
+  double max_speed() const;
+
+ private:
+  void detect_branching(const NodeSet& nodes, double t);
+  CrackTipOptions opt_;
+  std::vector<TipSample> samples_;
+  std::vector<std::array<double, 2>> window_speeds_;
+  std::optional<TipSample> window_start_;
+  double current_speed_ = 0;
+  std::optional<double> initiation_;
+  std::optional<double> branching_time_;
+  std::optional<Vec3> branching_point_;
+};
+
+}  // namespace periadapt

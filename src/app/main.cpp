@@ -1,0 +1,127 @@
+// periadapt: command-line entry (run, check).
+#include <omp.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <iostream>
+
+#include <fmt/format.h>
+
+#include "app/simulation.hpp"
+#include "io/deck.hpp"
+#include "io/deck_error.hpp"
+#include "model/build_model.hpp"
+
+using namespace periadapt;
+
+namespace {
+
+int check(const std::string& path) {
+  const Deck dk = load_deck(path);
+  const Model m = build_model(dk);
+  const TimeStepChoice ts = choose_time_step(dk, m);
+  const MaterialLaw& mat = m.material;
+  fmt::print("deck            {}\n", path);
+  fmt::print("model           {}D PMB{}\n", dk.dim,
+             dk.dim == 2 ? (dk.plane == PlaneCondition::Stress ? ", plane stress" : ", plane strain") : "");
+  if (dk.dim < 3) fmt::print("thickness/area  {:.6g}\n", dk.thickness);
+  fmt::print("material        {}: E = {:.6g} Pa, rho = {:.6g} kg/m^3, nu = {:.6g} (fixed by PMB)\n",
+             mat.name, mat.E, mat.rho, mat.nu);
+  fmt::print("micromodulus    {} shape, c0 = {:.6e}\n", to_string(mat.shape), mat.c0);
+  if (mat.G0 > 0) fmt::print("fracture energy G0 = {:.6g} J/m^2\n", mat.G0);
+  fmt::print("critical stretch s0 = {:.6e}{}\n", mat.s0, dk.damage ? "" : " (damage disabled)");
+  fmt::print("grid            spacing {:.6g} m, horizon {:.6g} m (m = {:.4g}), rotation {:.6g} deg, "
+             "quadrature {}\n",
+             dk.grid.spacing, dk.horizon, dk.horizon_factor, dk.grid.rotation_deg,
+             dk.quadrature == Quadrature::Full ? "full" : dk.quadrature == Quadrature::Subcell ? "subcell" : "pa_pdlammps");
+  fmt::print("nodes           {}\n", m.nodes.size());
+  fmt::print("bonds           {} (mean {:.1f} per node), {} cut by {} pre-crack(s)\n",
+             m.bonds.num_bonds(),
+             static_cast<double>(m.bonds.num_bonds()) / static_cast<double>(m.nodes.size()),
+             m.precrack_bonds, dk.cracks.size());
+  fmt::print("wave speed      {:.6g} m/s\n", mat.wave_speed);
+  fmt::print("dt_crit         {:.6e} s (Silling-Askari, node {})\n", ts.dt_crit, ts.limiting_node);
+  fmt::print("dt              {:.6e} s{}\n", ts.dt, dk.time_step ? " (deck)" : " (safety x dt_crit)");
+  fmt::print("steps           {} (end time {:.6e} s)\n", ts.steps, ts.steps * ts.dt);
+  for (const BodyLoad& l : m.loads)
+    fmt::print("load            {}: {} nodes, body force density [{:.4g}, {:.4g}, {:.4g}] N/m^3\n",
+               l.name, l.nodes.size(), l.density[0], l.density[1], l.density[2]);
+  for (const PrescribedMotion& p : m.motions)
+    fmt::print("motion          {}: {} nodes ({})\n", p.name, p.nodes.size(),
+               p.kind == PrescribedMotion::Kind::Velocity ? "velocity" : "displacement");
+  std::size_t nofail = 0;
+  for (auto f : m.nodes.flags) nofail += (f & kNoFail) != 0;
+  fmt::print("no-fail nodes   {}\n", nofail);
+  fmt::print("memory          {:.1f} MB bonds ({} B/bond), {:.1f} MB nodes ({} B/node)\n",
+             m.bonds.num_bonds() * BondFamilies::bytes_per_bond() / 1e6,
+             BondFamilies::bytes_per_bond(), m.nodes.size() * NodeSet::bytes_per_node() / 1e6,
+             NodeSet::bytes_per_node());
+  fmt::print("output          {}\n", dk.output.directory);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"PeriAdapt: peridynamics with adaptive grid refinement and scaling"};
+  app.require_subcommand(1);
+  std::string deck, out;
+  int threads = 0;
+  bool quiet = false;
+  CLI::App* run = app.add_subcommand("run", "run a deck");
+  run->add_option("deck", deck, "YAML input deck")->required();
+  run->add_option("--out", out, "output directory (overrides output.directory)");
+  run->add_option("--threads", threads, "OpenMP threads (default: all cores)")
+      ->check(CLI::PositiveNumber);
+  run->add_flag("--quiet", quiet, "no progress output");
+  CLI::App* chk = app.add_subcommand("check", "validate a deck and print every resolved parameter");
+  chk->add_option("deck", deck, "YAML input deck")->required();
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  }
+  if (threads > 0) omp_set_num_threads(threads);
+  try {
+    if (chk->parsed()) return check(deck);
+    RunOptions ro;
+    if (!out.empty()) ro.out_dir = out;
+    ro.quiet = quiet;
+    const Deck dk = load_deck(deck);
+    RunResult r = run_simulation(dk, ro);
+    const auto& s = r.summary;
+    if (r.diverged) {
+      const auto& d = s["divergence"];
+      fmt::print(stderr,
+                 "error: the simulation diverged at step {} (t = {:.4e} s): {} at node {} "
+                 "(x = {}). Outputs up to the last good snapshot are kept in {}. Lower "
+                 "solver.time_step or check loads and boundary conditions.\n",
+                 d["step"].get<long>(), d["time_s"].get<double>(), d["reason"].get<std::string>(),
+                 d["node"].get<std::size_t>(), d["position"].dump(),
+                 ro.out_dir ? *ro.out_dir : dk.output.directory);
+      return 3;
+    }
+    fmt::print("done: {} steps in {:.2f} s wall ({:.3g} bond evaluations/s)\n",
+               s["steps"].get<long>(), s["wall_time_s"].get<double>(),
+               s["bond_evals_per_s"].get<double>());
+    if (s.contains("crack")) {
+      const auto& c = s["crack"];
+      auto us = [](const nlohmann::json& v) {
+        return v.is_null() ? std::string("-") : fmt::format("{:.2f} us", v.get<double>() * 1e6);
+      };
+      fmt::print("crack: initiation {}, branching {}, mean speed {:.0f} m/s, max speed {:.0f} m/s\n",
+                 us(c["initiation_time_s"]), us(c["branching_time_s"]),
+                 c["mean_speed_m_s"].get<double>(), c["max_speed_m_s"].get<double>());
+    }
+    if (s.contains("outputs"))
+      fmt::print("outputs: {} , {} , summary.json\n", s["outputs"]["pvd"].get<std::string>(),
+                 s["outputs"]["history"].get<std::string>());
+    return 0;
+  } catch (const DeckError& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,262 @@
+#include "app/simulation.hpp"
+
+#include <omp.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include <fmt/format.h>
+
+#include "analysis/crack_tip.hpp"
+#include "analysis/energy.hpp"
+#include "app/progress.hpp"
+#include "io/damage_png.hpp"
+#include "io/deck_error.hpp"
+#include "io/vtu_writer.hpp"
+#include "model/build_model.hpp"
+#include "solver/stable_time_step.hpp"
+#include "solver/velocity_verlet.hpp"
+
+namespace periadapt {
+
+TimeStepChoice choose_time_step(const Deck& dk, const Model& m) {
+  const StableStep s = stable_time_step(m);
+  TimeStepChoice c{0, s.dt, s.node, 0};
+  if (dk.time_step) {
+    if (*dk.time_step > s.dt && !dk.allow_unstable_time_step)
+      throw DeckError(dk.file, 0, 0, "solver.time_step",
+                      fmt::format("{:.4g} s exceeds the stable time step {:.4g} s (Silling-Askari "
+                                  "bound, limited by node {}); use a smaller value or set "
+                                  "solver.allow_unstable_time_step: true",
+                                  *dk.time_step, s.dt, s.node));
+    c.dt = *dk.time_step;
+  } else {
+    c.dt = dk.safety * s.dt;
+  }
+  if (!std::isfinite(c.dt) || c.dt <= 0)
+    throw DeckError(dk.file, 0, 0, "solver", "no stable time step: the model has no bonds");
+  c.steps = dk.steps ? *dk.steps : static_cast<long>(std::ceil(dk.end_time / c.dt - 1e-9));
+  return c;
+}
+
+namespace {
+
+std::vector<PointField> snapshot_fields(const Model& m, const std::vector<double>& W) {
+  const NodeSet& ns = m.nodes;
+  const std::size_t n = ns.size();
+  std::vector<PointField> f;
+  auto vec3 = [&](const std::string& name, const std::array<std::vector<double>, 3>& a) {
+    PointField p{name, 3, std::vector<double>(n * 3, 0.0)};
+    for (std::size_t i = 0; i < n; ++i)
+      for (int d = 0; d < ns.dim; ++d) p.data[i * 3 + d] = a[d][i];
+    f.push_back(std::move(p));
+  };
+  vec3("displacement", ns.u);
+  vec3("velocity", ns.v);
+  PointField dmg{"damage", 1, std::vector<double>(n)};
+  for (std::size_t i = 0; i < n; ++i) dmg.data[i] = ns.damage(i);
+  f.push_back(std::move(dmg));
+  f.push_back({"energy_density", 1, W});
+  f.push_back({"horizon", 1, ns.horizon});
+  PointField lvl{"refinement_level", 1, std::vector<double>(n)};
+  for (std::size_t i = 0; i < n; ++i) lvl.data[i] = ns.level[i];
+  f.push_back(std::move(lvl));
+  f.push_back({"volume", 1, ns.volume});
+  return f;
+}
+
+}  // namespace
+
+RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
+  using clock = std::chrono::steady_clock;
+  const auto t_start = clock::now();
+  RunResult res;
+  Model& m = res.model;
+  m = build_model(dk);
+  const double t_setup = std::chrono::duration<double>(clock::now() - t_start).count();
+  const TimeStepChoice ts = choose_time_step(dk, m);
+  const NodeSet& ns = m.nodes;
+  const std::size_t nodes0 = ns.size();
+
+  const std::string dir = opt.out_dir ? *opt.out_dir : dk.output.directory;
+  if (opt.write_files) std::filesystem::create_directories(dir);
+  if (!opt.quiet) {
+    fmt::print("PeriAdapt: {} nodes, {} bonds ({} cut by pre-cracks), {}D PMB, c0 = {:.4e}, "
+               "s0 = {:.4e}\n",
+               ns.size(), m.bonds.num_bonds(), m.precrack_bonds, ns.dim, m.material.c0,
+               m.material.s0);
+    fmt::print("time step {:.4e} s (stable bound {:.4e} s), {} steps, {} threads\n", ts.dt,
+               ts.dt_crit, ts.steps, omp_get_max_threads());
+  }
+
+  // Crack-tip tracker.
+  CrackTipOptions tip;
+  const bool track = dk.output.track_tip && ns.dim >= 2;
+  if (track) {
+    tip.threshold = dk.output.tip_threshold;
+    if (!dk.cracks.empty()) {
+      const Vec3 a = dk.cracks[0].points[0], b = dk.cracks[0].points[1];
+      tip.origin = b;
+      tip.direction = scale(sub(b, a), 1.0 / norm(sub(b, a)));
+    }
+    if (dk.output.tip_origin) tip.origin = *dk.output.tip_origin;
+    if (dk.output.tip_direction) tip.direction = *dk.output.tip_direction;
+    tip.side = dk.output.tip_side == "upper"   ? CrackTipOptions::Side::Upper
+               : dk.output.tip_side == "lower" ? CrackTipOptions::Side::Lower
+                                               : CrackTipOptions::Side::Both;
+    tip.window = dk.output.tip_window;
+    tip.advance = m.grid_spacing;
+    tip.column = m.grid_spacing;
+    tip.branch_gap = dk.output.branch_gap ? *dk.output.branch_gap : m.horizon;
+  }
+  CrackTipTracker tracker(tip);
+
+  // Output schedule.
+  std::set<long> vtu_steps, png_steps;
+  if (dk.output.vtu && dk.output.vtu_count > 0)
+    for (int k = 0; k <= dk.output.vtu_count; ++k)
+      vtu_steps.insert(static_cast<long>(std::llround(static_cast<double>(k) * ts.steps /
+                                                      dk.output.vtu_count)));
+  for (double t : dk.output.png_times)
+    png_steps.insert(std::clamp<long>(static_cast<long>(std::llround(t / ts.dt)), 0, ts.steps));
+  png_steps.insert(ts.steps);
+
+  std::unique_ptr<VtuSeries> vtu;
+  std::ofstream hist;
+  if (opt.write_files) {
+    vtu = std::make_unique<VtuSeries>(dir, "snapshot");
+    hist.open(dir + "/history.csv");
+    hist << "step,time_s,kinetic_energy_J,strain_energy_J,external_work_J,energy_balance_J,"
+            "broken_bonds,damaged_nodes,tip_x_m,tip_y_m,tip_z_m,tip_speed_m_s,nodes,bonds,"
+            "wall_time_s\n";
+  }
+  std::vector<double> W;
+  std::vector<std::string> pngs;
+
+  VelocityVerlet vv(m, ts.dt);
+  vv.initialize();
+  double solver_seconds = 0;
+  std::size_t damaged_nodes = 0;
+  Vec3 last_tip{NAN, NAN, NAN};
+  double K = 0, U = 0;
+
+  auto observe = [&](long step) {
+    const double t = vv.time();
+    const bool do_hist = step % dk.output.history_every == 0 || step == ts.steps;
+    const bool do_vtu = vtu && vtu_steps.count(step);
+    const bool do_png = opt.write_files && png_steps.count(step);
+    if (!(do_hist || do_vtu || do_png)) return;
+    if (do_hist || do_vtu) U = strain_energy(m, W);
+    if (do_hist) {
+      K = kinetic_energy(ns);
+      damaged_nodes = 0;
+      for (std::size_t i = 0; i < ns.size(); ++i)
+        if (ns.damage(i) > tip.threshold) ++damaged_nodes;
+      if (track) {
+        if (auto s = tracker.observe(ns, t)) last_tip = s->position;
+      }
+      if (hist)
+        hist << fmt::format(
+            "{},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{},{},{:.6e},{:.6e},{:.6e},{:.6e},{},{},{:.4f}\n",
+            step, t, K, U, vv.external_work(), K + U - vv.external_work(), vv.broken_bonds(),
+            damaged_nodes, last_tip[0], last_tip[1], last_tip[2], tracker.current_speed(),
+            ns.size(), m.bonds.num_bonds(),
+            std::chrono::duration<double>(clock::now() - t_start).count());
+    }
+    if (do_vtu) vtu->write(t, ns, snapshot_fields(m, W));
+    if (do_png) {
+      std::vector<double> dmg(ns.size());
+      for (std::size_t i = 0; i < ns.size(); ++i) dmg[i] = ns.damage(i);
+      PngOptions po;
+      po.width = dk.output.png_width;
+      po.title = fmt::format("damage at t = {:.2f} us   ({} nodes)", t * 1e6, ns.size());
+      const std::string p = fmt::format("{}/damage_{:08.3f}us.png", dir, t * 1e6);
+      write_field_png(p, ns, dmg, po);
+      pngs.push_back(p);
+    }
+  };
+
+  observe(0);
+  Progress bar(ts.steps, opt.quiet);
+  for (long s = 1; s <= ts.steps; ++s) {
+    const auto t0 = clock::now();
+    const bool ok = vv.step();
+    solver_seconds += std::chrono::duration<double>(clock::now() - t0).count();
+    if (!ok) {
+      res.diverged = true;
+      break;
+    }
+    observe(s);
+    bar.update(s, track && tracker.initiation_time()
+                      ? fmt::format("tip v = {:.0f} m/s", tracker.current_speed())
+                      : "");
+  }
+  bar.finish();
+  const double wall = std::chrono::duration<double>(clock::now() - t_start).count();
+
+  nlohmann::json& j = res.summary;
+  j["deck"] = dk.file;
+  j["status"] = res.diverged ? "diverged" : "completed";
+  j["dimension"] = ns.dim;
+  j["nodes"] = {{"initial", nodes0}, {"final", ns.size()}};
+  j["bonds"] = m.bonds.num_bonds();
+  j["precrack_bonds"] = m.precrack_bonds;
+  j["broken_bonds"] = vv.broken_bonds();
+  j["steps"] = vv.step_count();
+  j["dt"] = ts.dt;
+  j["dt_stable"] = ts.dt_crit;
+  j["end_time_s"] = vv.time();
+  j["threads"] = omp_get_max_threads();
+  j["setup_time_s"] = t_setup;
+  j["solver_time_s"] = solver_seconds;
+  j["wall_time_s"] = wall;
+  j["bond_evals_per_s"] = solver_seconds > 0 ? vv.bond_evaluations() / solver_seconds : 0.0;
+  j["material"] = {{"E", m.material.E},           {"nu", m.material.nu},
+                   {"rho", m.material.rho},       {"G0", m.material.G0},
+                   {"c0", m.material.c0},         {"s0", m.material.s0},
+                   {"micromodulus", to_string(m.material.shape)},
+                   {"wave_speed_m_s", m.material.wave_speed}};
+  j["grid"] = {{"spacing", m.grid_spacing}, {"horizon", m.horizon}};
+  j["energy"] = {{"kinetic_J", K}, {"strain_J", U}, {"external_work_J", vv.external_work()}};
+  if (res.diverged) {
+    const DivergenceError& e = vv.divergence();
+    j["divergence"] = {{"node", e.node},
+                       {"step", e.step},
+                       {"time_s", e.time},
+                       {"position", {ns.x[0][e.node], ns.x[1][e.node], ns.x[2][e.node]}},
+                       {"reason", e.what}};
+  }
+  if (track) {
+    nlohmann::json c;
+    c["threshold"] = tip.threshold;
+    c["initiation_time_s"] = tracker.initiation_time() ? nlohmann::json(*tracker.initiation_time())
+                                                       : nlohmann::json(nullptr);
+    c["branching_time_s"] = tracker.branching_time() ? nlohmann::json(*tracker.branching_time())
+                                                     : nlohmann::json(nullptr);
+    if (tracker.branching_point())
+      c["branch_length_m"] = norm(sub(*tracker.branching_point(), tip.origin));
+    c["mean_speed_m_s"] = tracker.mean_speed();
+    c["max_speed_m_s"] = tracker.max_speed();
+    c["speed_window_s"] = tip.window;
+    nlohmann::json path = nlohmann::json::array();
+    for (const TipSample& s : tracker.path())
+      path.push_back({s.time, s.position[0], s.position[1], s.position[2]});
+    c["tip_path"] = path;  // [t, x, y, z]
+    nlohmann::json sp = nlohmann::json::array();
+    for (const auto& w : tracker.speeds()) sp.push_back({w[0], w[1]});
+    c["speed_history"] = sp;  // [t_mid, v]
+    j["crack"] = c;
+  }
+  if (opt.write_files) {
+    j["outputs"] = {{"pvd", vtu ? vtu->pvd_path() : ""},
+                    {"history", dir + "/history.csv"},
+                    {"png", pngs}};
+    std::ofstream(dir + "/summary.json") << j.dump(2) << "\n";
+  }
+  return res;
+}
+
+}  // namespace periadapt

@@ -1,0 +1,36 @@
+#pragma once
+// One explicit run from a validated deck: builds the model, integrates, observes, writes.
+#include <optional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "io/deck.hpp"
+#include "model/model.hpp"
+
+namespace periadapt {
+
+struct RunOptions {
+  std::optional<std::string> out_dir;  // overrides output.directory
+  bool write_files = true;
+  bool quiet = false;
+};
+
+struct RunResult {
+  bool diverged = false;
+  nlohmann::json summary;
+  Model model;  // final state
+};
+
+// Chosen time step and its stability bound; throws DeckError when the deck's time step exceeds
+// the bound without solver.allow_unstable_time_step.
+struct TimeStepChoice {
+  double dt, dt_crit;
+  std::size_t limiting_node;
+  long steps;
+};
+TimeStepChoice choose_time_step(const Deck& deck, const Model& model);
+
+RunResult run_simulation(const Deck& deck, const RunOptions& opt);
+
+}  // namespace periadapt

@@ -1,0 +1,28 @@
+#pragma once
+// Bond families in compressed sparse rows over owner nodes. Each pair is stored by both owners
+// (full lists), so the force loop writes only to its own node and needs no atomics; variable and
+// dual horizons need the two directions to differ anyway.
+//
+// Per bond: neighbor id (4 B), reference length (8 B), quadrature fraction beta (4 B) = 16 B.
+// A broken bond keeps its entry with beta stored negated: the kernel skips it and damage still
+// knows its weight.
+#include <cstdint>
+#include <vector>
+
+namespace periadapt {
+
+struct BondFamilies {
+  std::vector<std::uint64_t> offsets{0};  // size n+1
+  std::vector<std::uint32_t> neighbor;
+  std::vector<double> length;
+  std::vector<float> beta;
+
+  std::size_t num_nodes() const { return offsets.size() - 1; }
+  std::size_t num_bonds() const { return neighbor.size(); }
+  std::uint64_t begin(std::size_t i) const { return offsets[i]; }
+  std::uint64_t end(std::size_t i) const { return offsets[i + 1]; }
+  static bool intact(float b) { return b > 0.0f; }
+  static constexpr std::size_t bytes_per_bond() { return 4 + 8 + 4; }
+};
+
+}  // namespace periadapt

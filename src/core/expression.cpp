@@ -1,0 +1,62 @@
+#include "core/expression.hpp"
+
+#include <muParser.h>
+
+#include <numbers>
+#include <stdexcept>
+
+namespace periadapt {
+
+struct Expression::Impl {
+  mu::Parser parser;
+  mutable double x = 0, y = 0, z = 0, t = 0;
+  explicit Impl(const std::string& text) {
+    parser.DefineVar("x", &x);
+    parser.DefineVar("y", &y);
+    parser.DefineVar("z", &z);
+    parser.DefineVar("t", &t);
+    parser.DefineConst("pi", std::numbers::pi);
+    parser.SetExpr(text);
+  }
+};
+
+Expression::Expression(const std::string& text) : text_(text) {
+  try {
+    impl_ = std::make_unique<Impl>(text);
+    const auto& used = impl_->parser.GetUsedVar();
+    constant_ = used.empty();
+    uses_t_ = used.count("t") > 0;
+    value_ = impl_->parser.Eval();
+  } catch (const mu::Parser::exception_type& e) {
+    throw std::invalid_argument("cannot parse expression '" + text + "': " + e.GetMsg());
+  }
+}
+
+Expression::Expression(const Expression& o) : text_(o.text_), constant_(o.constant_),
+                                              uses_t_(o.uses_t_), value_(o.value_) {
+  if (!o.text_.empty()) impl_ = std::make_unique<Impl>(o.text_);
+}
+
+Expression& Expression::operator=(const Expression& o) {
+  if (this != &o) {
+    text_ = o.text_;
+    constant_ = o.constant_;
+    uses_t_ = o.uses_t_;
+    value_ = o.value_;
+    impl_ = o.text_.empty() ? nullptr : std::make_unique<Impl>(o.text_);
+  }
+  return *this;
+}
+
+Expression::~Expression() = default;
+
+double Expression::operator()(double x, double y, double z, double t) const {
+  if (constant_ || !impl_) return value_;
+  impl_->x = x;
+  impl_->y = y;
+  impl_->z = z;
+  impl_->t = t;
+  return impl_->parser.Eval();
+}
+
+}  // namespace periadapt

@@ -1,0 +1,97 @@
+#pragma once
+// Geometry primitives used to describe bodies, holes, regions and pre-cracks.
+#include <array>
+#include <cmath>
+
+namespace periadapt {
+
+using Vec3 = std::array<double, 3>;
+
+inline Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+inline Vec3 add(const Vec3& a, const Vec3& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
+inline Vec3 scale(const Vec3& a, double s) { return {a[0] * s, a[1] * s, a[2] * s}; }
+inline double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+inline Vec3 cross(const Vec3& a, const Vec3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+inline double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
+
+// Axis-aligned box; unused dimensions span (-inf, inf) so the same test works in 1D/2D/3D.
+struct Box {
+  Vec3 lo{-INFINITY, -INFINITY, -INFINITY};
+  Vec3 hi{INFINITY, INFINITY, INFINITY};
+  bool contains(const Vec3& p, double tol = 0.0) const {
+    for (int d = 0; d < 3; ++d)
+      if (p[d] < lo[d] - tol || p[d] > hi[d] + tol) return false;
+    return true;
+  }
+};
+
+// A region of space: box, disk (2D), cylinder along an axis (3D) or sphere.
+struct Shape {
+  enum class Kind { Box, Disk, Cylinder, Sphere, All } kind = Kind::All;
+  Box box;
+  Vec3 center{0, 0, 0};
+  double radius = 0;
+  int axis = 2;  // cylinder axis (0,1,2)
+  bool contains(const Vec3& p, double tol = 0.0) const {
+    switch (kind) {
+      case Kind::All: return true;
+      case Kind::Box: return box.contains(p, tol);
+      case Kind::Disk: {
+        double dx = p[0] - center[0], dy = p[1] - center[1];
+        return dx * dx + dy * dy <= (radius + tol) * (radius + tol);
+      }
+      case Kind::Cylinder: {
+        double r2 = 0;
+        for (int d = 0; d < 3; ++d)
+          if (d != axis) r2 += (p[d] - center[d]) * (p[d] - center[d]);
+        return r2 <= (radius + tol) * (radius + tol);
+      }
+      case Kind::Sphere: {
+        Vec3 q = sub(p, center);
+        return dot(q, q) <= (radius + tol) * (radius + tol);
+      }
+    }
+    return false;
+  }
+};
+
+// Orientation of c relative to the directed line a->b in the xy-plane (twice the signed area).
+inline double orient2d(const Vec3& a, const Vec3& b, const Vec3& c) {
+  return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+}
+
+// True when bond p-q crosses crack segment a-b in the xy-plane. The bond endpoints must lie on
+// opposite sides strictly (a node exactly on the crack line keeps its bonds); a crack end that
+// touches the bond counts as crossing.
+inline bool bond_crosses_segment(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b) {
+  double o1 = orient2d(a, b, p), o2 = orient2d(a, b, q);
+  if (!((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0))) return false;
+  double o3 = orient2d(p, q, a), o4 = orient2d(p, q, b);
+  return o3 * o4 <= 0;
+}
+
+// True when bond p-q crosses the planar quadrilateral v0..v3 (3D pre-crack). Same conventions as
+// the segment test: endpoints strictly on opposite sides of the plane; the quad edge counts.
+inline bool bond_crosses_quad(const Vec3& p, const Vec3& q, const std::array<Vec3, 4>& v) {
+  Vec3 n = cross(sub(v[1], v[0]), sub(v[3], v[0]));
+  double dp = dot(n, sub(p, v[0])), dq = dot(n, sub(q, v[0]));
+  if (!((dp > 0 && dq < 0) || (dp < 0 && dq > 0))) return false;
+  double t = dp / (dp - dq);
+  Vec3 x = add(p, scale(sub(q, p), t));
+  // Point-in-convex-polygon: x must be on the same side of every edge (or on it).
+  double sign = 0;
+  for (int e = 0; e < 4; ++e) {
+    const Vec3& a = v[e];
+    const Vec3& b = v[(e + 1) % 4];
+    double s = dot(n, cross(sub(b, a), sub(x, a)));
+    double scale_ref = norm(n) * norm(sub(b, a)) * 1e-12;
+    if (std::abs(s) <= scale_ref) continue;
+    if (sign == 0) sign = s;
+    else if ((s > 0) != (sign > 0)) return false;
+  }
+  return true;
+}
+
+}  // namespace periadapt

@@ -1,0 +1,70 @@
+#pragma once
+// Structure-of-arrays node storage. Nodes are only ever appended (refinement adds children and
+// deactivates parents), so ids stay stable for the whole run.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace periadapt {
+
+enum NodeFlag : std::uint8_t {
+  kActive = 1u << 0,
+  kNoFail = 1u << 1,   // bonds touching this node never break
+  kBoundary = 1u << 2, // has a prescribed displacement or velocity component
+};
+
+struct NodeSet {
+  int dim = 2;
+  std::array<std::vector<double>, 3> x;  // reference position
+  std::array<std::vector<double>, 3> u;  // displacement
+  std::array<std::vector<double>, 3> y;  // current position x + u (kept for the bond loops)
+  std::array<std::vector<double>, 3> v;  // velocity
+  std::array<std::vector<double>, 3> a;  // acceleration
+  std::array<std::vector<double>, 3> f;  // internal force density (N/m^3)
+  std::array<std::vector<double>, 3> b;  // external body-force density (N/m^3)
+  std::vector<double> volume;    // quadrature volume (m^3)
+  std::vector<double> spacing;   // grid spacing of the node's cell
+  std::vector<double> horizon;   // per-node horizon delta_i
+  std::vector<double> micromodulus;       // c0 of the source node (shape peak value)
+  std::vector<double> critical_stretch;   // s0 of the source node
+  std::vector<double> density;
+  std::vector<double> broken_weight;      // volume-weighted broken bonds (damage numerator)
+  std::vector<double> family_weight;      // volume-weighted family size (damage denominator)
+  std::vector<std::int8_t> level;
+  std::vector<std::uint8_t> flags;
+
+  std::size_t size() const { return volume.size(); }
+
+  // Appends a node with zero kinematic state; returns its id.
+  std::size_t append(const std::array<double, 3>& pos, double vol, double dx) {
+    for (int d = 0; d < 3; ++d) {
+      x[d].push_back(pos[d]);
+      u[d].push_back(0.0);
+      y[d].push_back(pos[d]);
+      v[d].push_back(0.0);
+      a[d].push_back(0.0);
+      f[d].push_back(0.0);
+      b[d].push_back(0.0);
+    }
+    volume.push_back(vol);
+    spacing.push_back(dx);
+    horizon.push_back(0.0);
+    micromodulus.push_back(0.0);
+    critical_stretch.push_back(0.0);
+    density.push_back(0.0);
+    broken_weight.push_back(0.0);
+    family_weight.push_back(0.0);
+    level.push_back(0);
+    flags.push_back(kActive);
+    return volume.size() - 1;
+  }
+
+  double damage(std::size_t i) const {
+    return family_weight[i] > 0 ? broken_weight[i] / family_weight[i] : 0.0;
+  }
+
+  // Bytes held per node by the arrays above (for memory reports).
+  static constexpr std::size_t bytes_per_node() { return 7 * 3 * 8 + 9 * 8 + 2; }
+};
+
+}  // namespace periadapt

@@ -1,0 +1,20 @@
+#pragma once
+// Neighbor search: full CSR bond families H(i) = { j : |x_j - x_i| <= delta_i } built with a cell
+// list in O(N), in parallel, with the partial-volume factor of each bond.
+#include "core/bond_families.hpp"
+#include "core/node_set.hpp"
+#include "discretize/partial_volume.hpp"
+
+namespace periadapt {
+
+struct QuadratureSpec {
+  Quadrature rule = Quadrature::PaPdlammps;
+  double lattice_rotation = 0.0;  // radians; orientation of the (2D) cells for sub-cell sampling
+};
+
+BondFamilies build_families(const NodeSet& nodes, const QuadratureSpec& quadrature);
+
+// Recomputes the damage denominators (sum of beta*V_j over each family) and numerators.
+void update_damage_weights(NodeSet& nodes, const BondFamilies& bonds);
+
+}  // namespace periadapt

@@ -1,0 +1,77 @@
+#include "discretize/grid.hpp"
+
+#include <cmath>
+#include <numbers>
+
+namespace periadapt {
+
+double cell_volume(int dim, double dx, double thickness) {
+  switch (dim) {
+    case 1: return dx * thickness;
+    case 2: return dx * dx * thickness;
+    default: return dx * dx * dx;
+  }
+}
+
+std::size_t generate_grid(const GridSpec& s, NodeSet& nodes) {
+  const std::size_t before = nodes.size();
+  const double dx = s.spacing;
+  const double vol = cell_volume(s.dim, dx, s.thickness);
+  const bool centered = s.registration == Registration::CellCentered;
+  const double shift = centered ? 0.5 : 0.0;
+  // Tolerance for points sitting on the body boundary (node-on-edge registration).
+  const double tol = 1e-9 * dx;
+
+  auto keep = [&](const Vec3& p) {
+    if (!s.body.contains(p, tol)) return false;
+    for (const Shape& h : s.holes)
+      if (h.contains(p)) return false;
+    return true;
+  };
+
+  std::array<long, 3> count{1, 1, 1};
+  std::array<long, 3> start{0, 0, 0};
+  Vec3 extent{0, 0, 0};
+  for (int d = 0; d < s.dim; ++d) extent[d] = s.body.hi[d] - s.body.lo[d];
+
+  if (s.dim == 2 && s.rotation_deg != 0.0) {
+    // Rotated lattice: cover the body's circumscribed square around the pivot, keep points
+    // inside the body.
+    const double th = s.rotation_deg * std::numbers::pi / 180.0;
+    const double c = std::cos(th), sn = std::sin(th);
+    double rmax = 0;
+    for (int cx = 0; cx < 2; ++cx)
+      for (int cy = 0; cy < 2; ++cy) {
+        double px = (cx ? s.body.hi[0] : s.body.lo[0]) - s.pivot[0];
+        double py = (cy ? s.body.hi[1] : s.body.lo[1]) - s.pivot[1];
+        rmax = std::max(rmax, std::hypot(px, py));
+      }
+    long n = static_cast<long>(std::ceil(rmax / dx)) + 1;
+    for (long j = -n; j <= n; ++j)
+      for (long i = -n; i <= n; ++i) {
+        double lx = (i + shift) * dx, ly = (j + shift) * dx;
+        Vec3 p{s.pivot[0] + c * lx - sn * ly, s.pivot[1] + sn * lx + c * ly, 0.0};
+        if (keep(p)) nodes.append(p, vol, dx);
+      }
+    return nodes.size() - before;
+  }
+
+  for (int d = 0; d < s.dim; ++d) {
+    double cells = extent[d] / dx;
+    long n = static_cast<long>(std::llround(cells));
+    if (std::abs(cells - static_cast<double>(n)) > 1e-6) n = static_cast<long>(std::ceil(cells));
+    count[d] = centered ? n : n + 1;
+    start[d] = 0;
+  }
+  for (long k = 0; k < count[2]; ++k)
+    for (long j = 0; j < count[1]; ++j)
+      for (long i = 0; i < count[0]; ++i) {
+        Vec3 p{0, 0, 0};
+        const long idx[3] = {i, j, k};
+        for (int d = 0; d < s.dim; ++d) p[d] = s.body.lo[d] + (idx[d] + shift) * dx;
+        if (keep(p)) nodes.append(p, vol, dx);
+      }
+  return nodes.size() - before;
+}
+
+}  // namespace periadapt

@@ -1,0 +1,360 @@
+#include "io/deck.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "core/expression.hpp"
+#include "io/yaml_section.hpp"
+
+namespace periadapt {
+
+namespace {
+
+Vec3 to_vec(const std::vector<double>& v) {
+  Vec3 p{0, 0, 0};
+  for (std::size_t d = 0; d < v.size() && d < 3; ++d) p[d] = v[d];
+  return p;
+}
+
+Shape parse_region(Section s, int dim) {
+  Shape sh;
+  const std::size_t D = static_cast<std::size_t>(dim);
+  int kinds = s.has("box") + s.has("disk") + s.has("cylinder") + s.has("sphere") + s.has("all");
+  if (kinds != 1)
+    s.fail("", "a region needs exactly one of: box, disk (2D), cylinder (3D), sphere (3D), all");
+  if (s.has("all")) {
+    s.boolean("all");
+    sh.kind = Shape::Kind::All;
+  } else if (s.has("box")) {
+    Section b = s.section("box");
+    std::vector<double> lo = b.numbers("min", D, D), hi = b.numbers("max", D, D);
+    sh.kind = Shape::Kind::Box;
+    for (std::size_t d = 0; d < D; ++d) {
+      if (!(hi[d] >= lo[d])) b.fail("max", "every max coordinate must be >= the min coordinate");
+      sh.box.lo[d] = lo[d];
+      sh.box.hi[d] = hi[d];
+    }
+    b.finish();
+  } else {
+    const std::string k = s.has("disk") ? "disk" : s.has("cylinder") ? "cylinder" : "sphere";
+    if (k == "disk" && dim != 2) s.fail(k, "a disk region is for 2D models; use cylinder or sphere in 3D");
+    if (k != "disk" && dim != 3) s.fail(k, "cylinder and sphere regions are for 3D models");
+    Section c = s.section(k);
+    sh.kind = k == "disk" ? Shape::Kind::Disk : k == "cylinder" ? Shape::Kind::Cylinder
+                                                                : Shape::Kind::Sphere;
+    sh.center = to_vec(c.numbers("center", D, D));
+    sh.radius = c.number("radius", std::nullopt, positive());
+    if (k == "cylinder") {
+      std::string ax = c.choice("axis", {"x", "y", "z"}, "z");
+      sh.axis = ax == "x" ? 0 : ax == "y" ? 1 : 2;
+    }
+    c.finish();
+  }
+  s.finish();
+  return sh;
+}
+
+std::array<std::optional<std::string>, 3> parse_components(Section& s, const std::string& key,
+                                                           int dim) {
+  std::array<std::optional<std::string>, 3> out;
+  YAML::Node n = s.raw(key);
+  if (!n.IsSequence() || static_cast<int>(n.size()) != dim)
+    s.fail(key, "expected a list of " + std::to_string(dim) +
+                    " components (number, expression in x, y, z, t, or null for free)");
+  for (int d = 0; d < dim; ++d) {
+    const YAML::Node e = n[d];
+    if (e.IsNull()) continue;
+    if (!e.IsScalar()) s.fail_at(e, key, "each component is a number, an expression or null");
+    try {
+      Expression test(e.Scalar());
+      double v = test(0, 0, 0, 0);
+      if (!std::isfinite(v) && test.is_constant()) throw std::invalid_argument("not finite");
+    } catch (const std::invalid_argument& ex) {
+      s.fail_at(e, key, std::string(ex.what()) +
+                            "; allowed: a number or an expression of x, y, z, t (muparser syntax)");
+    }
+    out[d] = e.Scalar();
+  }
+  return out;
+}
+
+TimeFunction parse_time(std::optional<Section> s) {
+  TimeFunction f;
+  if (!s) return f;
+  const std::string kind = s->choice("function", {"step", "ramp", "table"}, "step");
+  if (kind == "step") {
+    f.kind = TimeFunction::Kind::Step;
+    f.t0 = s->number("start", 0.0, non_negative());
+  } else if (kind == "ramp") {
+    f.kind = TimeFunction::Kind::Ramp;
+    f.t0 = s->number("start", 0.0, non_negative());
+    f.t1 = s->number("end", std::nullopt, positive());
+    if (!(f.t1 > f.t0)) s->fail("end", "ramp end must be later than its start");
+  } else {
+    f.kind = TimeFunction::Kind::Table;
+    f.times = s->numbers("times", 2, 100000);
+    f.values = s->numbers("values", 2, 100000);
+    if (f.times.size() != f.values.size())
+      s->fail("values", "needs as many values as times (" + std::to_string(f.times.size()) + ")");
+    for (std::size_t k = 1; k < f.times.size(); ++k)
+      if (!(f.times[k] > f.times[k - 1])) s->fail("times", "times must increase strictly");
+  }
+  s->finish();
+  return f;
+}
+
+bool segment_meets_body(const Box& body, const Vec3& a, const Vec3& b, int dim) {
+  for (int k = 0; k <= 200; ++k) {
+    Vec3 p = add(a, scale(sub(b, a), k / 200.0));
+    Box bb = body;
+    for (int d = dim; d < 3; ++d) bb.lo[d] = -INFINITY, bb.hi[d] = INFINITY;
+    if (bb.contains(p)) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+Deck parse_deck(const std::string& text, const std::string& name) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::ParserException& e) {
+    throw DeckError(name, e.mark.line + 1, e.mark.column + 1, "",
+                    "malformed YAML: " + e.msg + " (check indentation, colons and brackets)");
+  }
+  if (!root.IsMap())
+    throw DeckError(name, 0, 0, "", "a deck is a YAML mapping with sections model, material, "
+                                    "discretization, ... (see docs/deck-reference.md)");
+  Deck dk;
+  dk.file = name;
+  Section top(root, "", name);
+
+  // --- model
+  {
+    Section m = top.section("model");
+    dk.dim = static_cast<int>(m.integer("dimension", std::nullopt, [](long v) {
+      return (v >= 1 && v <= 3) ? std::string() : std::string("must be 1, 2 or 3");
+    }));
+    if (dk.dim == 2) {
+      std::string p = m.choice("plane", {"stress", "strain"}, "stress");
+      dk.plane = p == "stress" ? PlaneCondition::Stress : PlaneCondition::Strain;
+    } else if (m.has("plane")) {
+      m.fail("plane", "only 2D models have a plane condition");
+    }
+    dk.thickness = m.number("thickness", 1.0, positive());
+    if (dk.dim == 3 && m.has("thickness")) m.fail("thickness", "3D models have no thickness key");
+    dk.formulation = m.choice("formulation", {"pmb"}, "pmb");
+    m.finish();
+  }
+  // --- material
+  {
+    Section s = top.section("material");
+    dk.material_name = s.text("name", "material");
+    dk.E = s.number("youngs_modulus", std::nullopt, positive());
+    dk.rho = s.number("density", std::nullopt, positive());
+    const double nu_bb = bond_based_poisson(dk.dim, dk.plane);
+    if (s.has("poisson_ratio")) {
+      dk.nu = s.number("poisson_ratio");
+      if (std::abs(*dk.nu - nu_bb) > 1e-3)
+        s.fail("poisson_ratio", "the bond-based PMB model fixes Poisson's ratio to " +
+                                    std::string(nu_bb > 0.3 ? "1/3 (plane stress)"
+                                                            : "1/4 (1D, 3D, plane strain)") +
+                                    "; omit the key or give that value");
+    }
+    if (s.has("fracture_energy") && s.has("critical_stretch"))
+      s.fail("critical_stretch", "give either fracture_energy or critical_stretch, not both");
+    if (s.has("fracture_energy")) dk.G0 = s.number("fracture_energy", std::nullopt, positive());
+    if (s.has("critical_stretch")) dk.s0 = s.number("critical_stretch", std::nullopt, positive());
+    std::string sh = s.choice("micromodulus", {"constant", "triangular", "inverted_triangular"},
+                              "constant");
+    dk.shape = sh == "constant"     ? InfluenceShape::Constant
+               : sh == "triangular" ? InfluenceShape::Triangular
+                                    : InfluenceShape::InvertedTriangular;
+    s.finish();
+  }
+  // --- discretization
+  {
+    Section s = top.section("discretization");
+    GridSpec& g = dk.grid;
+    g.dim = dk.dim;
+    g.thickness = dk.thickness;
+    g.spacing = s.number("spacing", std::nullopt, positive());
+    if (s.has("horizon") && s.has("horizon_factor"))
+      s.fail("horizon", "give either horizon or horizon_factor (m), not both");
+    if (s.has("horizon")) {
+      dk.horizon = s.number("horizon", std::nullopt, positive());
+      dk.horizon_factor = dk.horizon / g.spacing;
+      if (dk.horizon_factor < 1.0)
+        s.fail("horizon", "the horizon must be at least one grid spacing (m = delta/dx >= 1)");
+    } else {
+      dk.horizon_factor = s.number("horizon_factor", 3.0, [](double v) {
+        return v >= 1.0 ? std::string()
+                        : std::string("m = delta/dx must be >= 1 (typical 3 to 6)");
+      });
+      dk.horizon = dk.horizon_factor * g.spacing;
+    }
+    Section body = s.section("body");
+    Shape b = parse_region(body, dk.dim);
+    if (b.kind != Shape::Kind::Box) s.fail("body", "the body is a box (use holes to cut it)");
+    g.body = b.box;
+    for (int d = 0; d < dk.dim; ++d)
+      if (!(g.body.hi[d] - g.body.lo[d] >= g.spacing))
+        s.fail("body", "the body must be at least one grid spacing wide in every direction");
+    g.rotation_deg = s.number("rotation_deg", 0.0, in_range(-360, 360));
+    if (g.rotation_deg != 0.0 && dk.dim != 2)
+      s.fail("rotation_deg", "grid rotation is available for 2D models only");
+    Vec3 centre{0, 0, 0};
+    for (int d = 0; d < 3; ++d)
+      centre[d] = d < dk.dim ? 0.5 * (g.body.lo[d] + g.body.hi[d]) : 0.0;
+    g.pivot = s.has("rotation_pivot") ? to_vec(s.numbers("rotation_pivot", 2, 2)) : centre;
+    std::string reg = s.choice("registration", {"cell_centered", "node_on_edge"}, "cell_centered");
+    g.registration = reg == "cell_centered" ? Registration::CellCentered : Registration::NodeOnEdge;
+    for (Section h : s.list("holes")) g.holes.push_back(parse_region(h, dk.dim));
+    std::string q = s.choice("quadrature", {"pa_pdlammps", "subcell", "full"}, "pa_pdlammps");
+    dk.quadrature = q == "full"      ? Quadrature::Full
+                    : q == "subcell" ? Quadrature::Subcell
+                                     : Quadrature::PaPdlammps;
+    s.finish();
+  }
+  // --- cracks
+  for (Section c : top.list("cracks")) {
+    PreCrack pc;
+    if (dk.dim == 1) c.fail("", "pre-cracks are for 2D (segment) and 3D (quad) models");
+    if (dk.dim == 2) {
+      auto pts = c.points("segment", 2, 2);
+      pc.points[0] = to_vec(pts[0]);
+      pc.points[1] = to_vec(pts[1]);
+      if (norm(sub(pc.points[1], pc.points[0])) <= 0)
+        c.fail("segment", "the two crack ends must differ");
+      if (!segment_meets_body(dk.grid.body, pc.points[0], pc.points[1], 2))
+        c.fail("segment", "the crack lies outside the body; it must cross or touch the body box");
+    } else {
+      auto pts = c.points("quad", 4, 3);
+      pc.planar3d = true;
+      for (int k = 0; k < 4; ++k) pc.points[k] = to_vec(pts[static_cast<std::size_t>(k)]);
+      bool meets = false;
+      for (int k = 0; k < 4 && !meets; ++k)
+        meets = segment_meets_body(dk.grid.body, pc.points[k], pc.points[(k + 2) % 4], 3) ||
+                segment_meets_body(dk.grid.body, pc.points[k], pc.points[(k + 1) % 4], 3);
+      if (!meets) c.fail("quad", "the crack lies outside the body; it must cross the body box");
+      Vec3 nrm = cross(sub(pc.points[1], pc.points[0]), sub(pc.points[3], pc.points[0]));
+      if (norm(nrm) <= 0) c.fail("quad", "the quadrilateral is degenerate");
+      const double off = std::abs(dot(nrm, sub(pc.points[2], pc.points[0]))) / norm(nrm);
+      if (off > 1e-9 * norm(sub(pc.points[2], pc.points[0])) + 1e-12)
+        c.fail("quad", "the four corners must lie in one plane");
+    }
+    c.finish();
+    dk.cracks.push_back(pc);
+  }
+  // --- loads
+  for (Section l : top.list("loads")) {
+    LoadSpec ls;
+    std::string t = l.choice("type", {"traction", "body_force"});
+    ls.kind = t == "traction" ? LoadSpec::Kind::Traction : LoadSpec::Kind::BodyForce;
+    ls.name = l.text("name", l.path());
+    ls.region = parse_region(l.section("region"), dk.dim);
+    ls.value = to_vec(l.numbers("value", static_cast<std::size_t>(dk.dim),
+                                static_cast<std::size_t>(dk.dim)));
+    if (ls.kind == LoadSpec::Kind::Traction) ls.layer = l.number("layer", 0.0, non_negative());
+    ls.time = parse_time(l.optional_section("time"));
+    l.finish();
+    dk.loads.push_back(ls);
+  }
+  // --- boundary conditions
+  for (Section b : top.list("boundary_conditions")) {
+    MotionSpec ms;
+    ms.name = b.text("name", b.path());
+    ms.region = parse_region(b.section("region"), dk.dim);
+    if (b.has("velocity") == b.has("displacement"))
+      b.fail("", "a boundary condition needs exactly one of: velocity, displacement");
+    const bool vel = b.has("velocity");
+    ms.kind = vel ? MotionSpec::Kind::Velocity : MotionSpec::Kind::Displacement;
+    ms.component = parse_components(b, vel ? "velocity" : "displacement", dk.dim);
+    b.finish();
+    dk.motions.push_back(ms);
+  }
+  // --- initial conditions
+  if (auto ic = top.optional_section("initial_conditions")) {
+    if (ic->has("displacement")) dk.initial_displacement = parse_components(*ic, "displacement", dk.dim);
+    if (ic->has("velocity")) dk.initial_velocity = parse_components(*ic, "velocity", dk.dim);
+    ic->finish();
+  }
+  // --- damage
+  if (auto dmg = top.optional_section("damage")) {
+    dk.damage = dmg->boolean("enabled", true);
+    for (Section r : dmg->list("no_fail")) dk.no_fail.push_back(parse_region(r, dk.dim));
+    dmg->finish();
+  }
+  if (dk.damage && !dk.G0 && !dk.s0)
+    top.fail("material", "damage is enabled: give material.fracture_energy (G0) or "
+                         "material.critical_stretch, or set damage.enabled: false");
+  // --- solver
+  {
+    Section s = top.section("solver");
+    s.choice("type", {"explicit"}, "explicit");
+    if (s.has("time_step")) dk.time_step = s.number("time_step", std::nullopt, positive());
+    dk.safety = s.number("safety_factor", 0.8, [](double v) {
+      return (v > 0 && v <= 1) ? std::string() : std::string("must be in (0, 1]");
+    });
+    dk.allow_unstable_time_step = s.boolean("allow_unstable_time_step", false);
+    if (s.has("end_time") == s.has("steps"))
+      s.fail("", "give exactly one of end_time (s) or steps");
+    if (s.has("end_time")) dk.end_time = s.number("end_time", std::nullopt, positive());
+    if (s.has("steps"))
+      dk.steps = s.integer("steps", std::nullopt, [](long v) {
+        return v >= 1 ? std::string() : std::string("must be >= 1");
+      });
+    s.finish();
+  }
+  // --- output
+  if (auto o = top.optional_section("output")) {
+    OutputSpec& out = dk.output;
+    out.directory = o->text("directory", out.directory);
+    out.vtu = o->boolean("vtu", true);
+    out.vtu_count = static_cast<int>(o->integer("vtu_snapshots", 10, [](long v) {
+      return v >= 0 ? std::string() : std::string("must be >= 0");
+    }));
+    out.history_every = o->integer("history_every", 10, [](long v) {
+      return v >= 1 ? std::string() : std::string("must be >= 1");
+    });
+    if (o->has("png_times")) out.png_times = o->numbers("png_times", 1, 1000);
+    out.png_width = static_cast<int>(o->integer("png_width", 1200, [](long v) {
+      return (v >= 100 && v <= 8000) ? std::string() : std::string("must be in [100, 8000]");
+    }));
+    if (auto ct = o->optional_section("crack_tip")) {
+      out.track_tip = true;
+      out.tip_threshold = ct->number("threshold", 0.35, in_range(0, 1));
+      if (ct->has("origin"))
+        out.tip_origin = to_vec(ct->numbers("origin", static_cast<std::size_t>(dk.dim),
+                                            static_cast<std::size_t>(dk.dim)));
+      if (ct->has("direction")) {
+        Vec3 d = to_vec(ct->numbers("direction", static_cast<std::size_t>(dk.dim),
+                                    static_cast<std::size_t>(dk.dim)));
+        if (norm(d) <= 0) ct->fail("direction", "must be a non-zero vector");
+        out.tip_direction = scale(d, 1.0 / norm(d));
+      }
+      out.tip_side = ct->choice("side", {"both", "upper", "lower"}, "both");
+      out.tip_window = ct->number("speed_window", 2e-6, positive());
+      if (ct->has("branch_gap")) out.branch_gap = ct->number("branch_gap", std::nullopt, positive());
+      ct->finish();
+    }
+    o->finish();
+  }
+  if (!dk.output.track_tip && !dk.cracks.empty() && dk.dim == 2) dk.output.track_tip = true;
+  top.finish();
+  return dk;
+}
+
+Deck load_deck(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw DeckError(path, 0, 0, "", "cannot open the deck file");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return parse_deck(ss.str(), path);
+}
+
+}  // namespace periadapt

@@ -1,0 +1,88 @@
+#pragma once
+// A validated input deck: every key typed, checked and defaulted. See docs/deck-reference.md.
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/geometry.hpp"
+#include "discretize/grid.hpp"
+#include "discretize/partial_volume.hpp"
+#include "discretize/precrack.hpp"
+#include "material/micromodulus.hpp"
+#include "model/time_function.hpp"
+
+namespace periadapt {
+
+struct LoadSpec {
+  enum class Kind { Traction, BodyForce } kind = Kind::Traction;
+  std::string name;
+  Shape region;
+  Vec3 value{0, 0, 0};   // traction (Pa) or body-force density (N/m^3)
+  double layer = 0.0;    // traction: depth of the loaded layer (0: one grid spacing)
+  TimeFunction time;
+};
+
+struct MotionSpec {
+  enum class Kind { Velocity, Displacement } kind = Kind::Velocity;
+  std::string name;
+  Shape region;
+  std::array<std::optional<std::string>, 3> component;
+};
+
+struct OutputSpec {
+  std::string directory = "out";
+  int vtu_count = 10;                 // snapshots over the run (plus the initial state)
+  long history_every = 10;            // steps between history rows and tip samples
+  std::vector<double> png_times;      // damage pictures at these times (end time always)
+  int png_width = 1200;
+  bool vtu = true;
+  // crack tip
+  bool track_tip = false;
+  double tip_threshold = 0.35;
+  std::optional<Vec3> tip_origin, tip_direction;
+  std::string tip_side = "both";
+  double tip_window = 2e-6;
+  std::optional<double> branch_gap;
+};
+
+struct Deck {
+  std::string file;
+  // model
+  int dim = 2;
+  PlaneCondition plane = PlaneCondition::None;
+  double thickness = 1.0;
+  std::string formulation = "pmb";
+  // material
+  std::string material_name = "material";
+  double E = 0, rho = 0;
+  std::optional<double> nu, G0, s0;
+  InfluenceShape shape = InfluenceShape::Constant;
+  // discretization
+  GridSpec grid;
+  double horizon_factor = 3.0;  // m = delta / dx
+  double horizon = 0.0;         // delta
+  Quadrature quadrature = Quadrature::PaPdlammps;
+  // cracks, loads, boundary conditions, initial fields
+  std::vector<PreCrack> cracks;
+  std::vector<LoadSpec> loads;
+  std::vector<MotionSpec> motions;
+  std::array<std::optional<std::string>, 3> initial_displacement, initial_velocity;
+  // damage
+  bool damage = true;
+  std::vector<Shape> no_fail;
+  // solver
+  std::optional<double> time_step;
+  double safety = 0.8;
+  bool allow_unstable_time_step = false;
+  double end_time = 0.0;
+  std::optional<long> steps;
+  OutputSpec output;
+};
+
+// Reads and validates a deck. Throws DeckError (file, key, line, what is allowed).
+Deck load_deck(const std::string& path);
+// Same, from text (tests); `name` stands for the file in messages.
+Deck parse_deck(const std::string& text, const std::string& name);
+
+}  // namespace periadapt

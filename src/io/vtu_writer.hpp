@@ -1,0 +1,32 @@
+#pragma once
+// ParaView output: one VTU (unstructured grid of vertex cells, appended raw binary) per snapshot
+// and a PVD collection that indexes them by time. The PVD is rewritten after every snapshot, so
+// a run that stops early still leaves a valid series.
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/node_set.hpp"
+
+namespace periadapt {
+
+struct PointField {
+  std::string name;
+  int components;             // 1 or 3
+  std::vector<double> data;   // n * components
+};
+
+class VtuSeries {
+ public:
+  VtuSeries(std::string directory, std::string basename);
+  // Writes the active nodes' positions (reference configuration) and fields; returns the path.
+  std::string write(double time, const NodeSet& nodes, const std::vector<PointField>& fields);
+  const std::string& pvd_path() const { return pvd_; }
+
+ private:
+  void write_pvd() const;
+  std::string dir_, base_, pvd_;
+  std::vector<std::pair<double, std::string>> entries_;
+};
+
+}  // namespace periadapt

@@ -1,0 +1,183 @@
+#include "material/pmb.hpp"
+
+#include <cmath>
+
+namespace periadapt {
+
+namespace {
+
+// Influence shape; t may exceed 1 for partially covered cells beyond the horizon (sub-cell
+// quadrature), where the shape is held at its edge value.
+template <InfluenceShape S>
+inline double g(double t) {
+  t = t < 1.0 ? t : 1.0;
+  if constexpr (S == InfluenceShape::Constant) return 1.0;
+  else if constexpr (S == InfluenceShape::Triangular) return 1.0 - t;
+  else return t;
+}
+
+template <int D, InfluenceShape S>
+std::size_t forces_kernel(NodeSet& ns, BondFamilies& bf, bool allow_breaking) {
+  const std::size_t n = ns.size();
+  const double* y0 = ns.y[0].data();
+  const double* y1 = ns.y[1].data();
+  const double* y2 = ns.y[2].data();
+  const double* vol = ns.volume.data();
+  const std::uint8_t* flags = ns.flags.data();
+  const std::uint64_t* off = bf.offsets.data();
+  const std::uint32_t* nbr = bf.neighbor.data();
+  const double* len = bf.length.data();
+  float* beta = bf.beta.data();
+  double* f0 = ns.f[0].data();
+  double* f1 = ns.f[1].data();
+  double* f2 = ns.f[2].data();
+  std::size_t broken_total = 0;
+
+#pragma omp parallel for schedule(dynamic, 512) reduction(+ : broken_total)
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!(flags[i] & kActive)) continue;
+    const double yi0 = y0[i];
+    const double yi1 = D > 1 ? y1[i] : 0.0;
+    const double yi2 = D > 2 ? y2[i] : 0.0;
+    const double ci = ns.micromodulus[i];
+    const double s0 = ns.critical_stretch[i];
+    const double inv_delta = 1.0 / ns.horizon[i];
+    const bool can_break = allow_breaking && !(flags[i] & kNoFail);
+    double a0 = 0, a1 = 0, a2 = 0, bw = 0;
+    std::size_t nb = 0;
+    const std::uint64_t kb = off[i], ke = off[i + 1];
+#pragma omp simd reduction(+ : a0, a1, a2, bw, nb)
+    for (std::uint64_t k = kb; k < ke; ++k) {
+      const float b = beta[k];
+      if (b > 0.0f) {
+        const std::uint32_t j = nbr[k];
+        const double d0 = y0[j] - yi0;
+        const double d1 = D > 1 ? y1[j] - yi1 : 0.0;
+        const double d2 = D > 2 ? y2[j] - yi2 : 0.0;
+        const double r = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2);
+        const double L = len[k];
+        const double s = (r - L) / L;
+        if (can_break && s > s0 && !(flags[j] & kNoFail)) {
+          beta[k] = -b;
+          bw += static_cast<double>(b) * vol[j];
+          nb += 1;
+        } else {
+          const double fr = ci * g<S>(L * inv_delta) * s * static_cast<double>(b) * vol[j] / r;
+          a0 += fr * d0;
+          a1 += fr * d1;
+          a2 += fr * d2;
+        }
+      }
+    }
+    f0[i] = a0;
+    if constexpr (D > 1) f1[i] = a1;
+    if constexpr (D > 2) f2[i] = a2;
+    ns.broken_weight[i] += bw;
+    broken_total += nb;
+  }
+  return broken_total;
+}
+
+template <int D, InfluenceShape S>
+void energy_kernel(const NodeSet& ns, const BondFamilies& bf, std::vector<double>& W) {
+  const std::size_t n = ns.size();
+  W.assign(n, 0.0);
+#pragma omp parallel for schedule(dynamic, 512)
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!(ns.flags[i] & kActive)) continue;
+    const double inv_delta = 1.0 / ns.horizon[i];
+    double w = 0;
+    for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {
+      const float b = bf.beta[k];
+      if (!(b > 0.0f)) continue;
+      const std::uint32_t j = bf.neighbor[k];
+      double r2 = 0;
+      for (int d = 0; d < D; ++d) {
+        const double t = ns.y[d][j] - ns.y[d][i];
+        r2 += t * t;
+      }
+      const double L = bf.length[k];
+      const double s = (std::sqrt(r2) - L) / L;
+      w += g<S>(L * inv_delta) * s * s * L * static_cast<double>(b) * ns.volume[j];
+    }
+    W[i] = 0.25 * ns.micromodulus[i] * w;
+  }
+}
+
+template <InfluenceShape S>
+void stiffness_kernel(const NodeSet& ns, const BondFamilies& bf, std::vector<double>& K) {
+  const std::size_t n = ns.size();
+  K.assign(n, 0.0);
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    const double inv_delta = 1.0 / ns.horizon[i];
+    double k = 0;
+    for (std::uint64_t q = bf.begin(i); q < bf.end(i); ++q) {
+      const double L = bf.length[q];
+      k += g<S>(L * inv_delta) * std::abs(static_cast<double>(bf.beta[q])) *
+           ns.volume[bf.neighbor[q]] / L;
+    }
+    K[i] = ns.micromodulus[i] * k;
+  }
+}
+
+template <template <int, InfluenceShape> class F, class... Args>
+auto dispatch(int dim, InfluenceShape s, Args&&... args) {
+  auto by_shape = [&]<int D>() {
+    switch (s) {
+      case InfluenceShape::Constant:
+        return F<D, InfluenceShape::Constant>::run(std::forward<Args>(args)...);
+      case InfluenceShape::Triangular:
+        return F<D, InfluenceShape::Triangular>::run(std::forward<Args>(args)...);
+      default:
+        return F<D, InfluenceShape::InvertedTriangular>::run(std::forward<Args>(args)...);
+    }
+  };
+  switch (dim) {
+    case 1: return by_shape.template operator()<1>();
+    case 2: return by_shape.template operator()<2>();
+    default: return by_shape.template operator()<3>();
+  }
+}
+
+template <int D, InfluenceShape S>
+struct ForcesOp {
+  static std::size_t run(NodeSet& ns, BondFamilies& bf, bool brk) {
+    return forces_kernel<D, S>(ns, bf, brk);
+  }
+};
+template <int D, InfluenceShape S>
+struct EnergyOp {
+  static int run(const NodeSet& ns, const BondFamilies& bf, std::vector<double>& W) {
+    energy_kernel<D, S>(ns, bf, W);
+    return 0;
+  }
+};
+template <int D, InfluenceShape S>
+struct StiffnessOp {
+  static int run(const NodeSet& ns, const BondFamilies& bf, std::vector<double>& K) {
+    stiffness_kernel<S>(ns, bf, K);
+    return 0;
+  }
+};
+
+}  // namespace
+
+PmbStepStats pmb_forces(NodeSet& nodes, BondFamilies& bonds, InfluenceShape shape,
+                        bool allow_breaking) {
+  PmbStepStats st;
+  st.newly_broken = dispatch<ForcesOp>(nodes.dim, shape, nodes, bonds, allow_breaking);
+  return st;
+}
+
+void pmb_energy_density(const NodeSet& nodes, const BondFamilies& bonds, InfluenceShape shape,
+                        std::vector<double>& W) {
+  dispatch<EnergyOp>(nodes.dim, shape, nodes, bonds, W);
+}
+
+void pmb_stiffness_sum(const NodeSet& nodes, const BondFamilies& bonds, InfluenceShape shape,
+                       std::vector<double>& K) {
+  dispatch<StiffnessOp>(nodes.dim, shape, nodes, bonds, K);
+}
+
+}  // namespace periadapt

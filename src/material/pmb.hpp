@@ -1,0 +1,31 @@
+#pragma once
+// Bond-based prototype microelastic brittle (PMB) model: force densities, bond breaking and
+// strain-energy density. One kernel per dimension and influence shape, selected once per call.
+#include <cstddef>
+#include <vector>
+
+#include "core/bond_families.hpp"
+#include "core/node_set.hpp"
+#include "material/micromodulus.hpp"
+
+namespace periadapt {
+
+struct PmbStepStats {
+  std::size_t newly_broken = 0;
+};
+
+// Internal force density f_i = sum_j c_i g(xi/delta_i) s beta_j V_j e_ij for every active node,
+// from the current positions y. When `allow_breaking`, bonds whose stretch exceeds the source
+// node's critical stretch break irreversibly (unless either end is flagged no-fail).
+PmbStepStats pmb_forces(NodeSet& nodes, BondFamilies& bonds, InfluenceShape shape,
+                        bool allow_breaking);
+
+// Strain-energy density W_i = 1/4 sum_j c_i g s^2 xi beta_j V_j over intact bonds (thesis 2.14).
+void pmb_energy_density(const NodeSet& nodes, const BondFamilies& bonds, InfluenceShape shape,
+                        std::vector<double>& W);
+
+// sum_j c_i g beta_j V_j / xi: the stiffness sum of the Silling-Askari stable-step bound.
+void pmb_stiffness_sum(const NodeSet& nodes, const BondFamilies& bonds, InfluenceShape shape,
+                       std::vector<double>& K);
+
+}  // namespace periadapt

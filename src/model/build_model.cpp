@@ -1,0 +1,122 @@
+#include "model/build_model.hpp"
+
+#include <cmath>
+
+#include "core/expression.hpp"
+#include "discretize/families.hpp"
+#include "io/deck_error.hpp"
+
+namespace periadapt {
+
+namespace {
+
+std::vector<std::uint32_t> select(const NodeSet& ns, const Shape& region, double tol) {
+  std::vector<std::uint32_t> out;
+  for (std::size_t i = 0; i < ns.size(); ++i)
+    if (region.contains({ns.x[0][i], ns.x[1][i], ns.x[2][i]}, tol))
+      out.push_back(static_cast<std::uint32_t>(i));
+  return out;
+}
+
+}  // namespace
+
+Model build_model(const Deck& dk) {
+  Model m;
+  NodeSet& ns = m.nodes;
+  ns.dim = dk.dim;
+  m.grid_spacing = dk.grid.spacing;
+  m.horizon = dk.horizon;
+  generate_grid(dk.grid, ns);
+  if (ns.size() == 0)
+    throw DeckError(dk.file, 0, 0, "discretization", "the grid has no nodes inside the body");
+  if (ns.size() > 0x7fffffffu)
+    throw DeckError(dk.file, 0, 0, "discretization.spacing", "more than 2^31 nodes");
+
+  MaterialLaw& mat = m.material;
+  mat.name = dk.material_name;
+  mat.E = dk.E;
+  mat.rho = dk.rho;
+  mat.nu = bond_based_poisson(dk.dim, dk.plane);
+  mat.shape = dk.shape;
+  mat.plane = dk.plane;
+  mat.thickness = dk.thickness;
+  mat.c0 = micromodulus_c0(dk.dim, dk.plane, dk.shape, dk.E, dk.horizon, dk.thickness);
+  if (dk.G0) {
+    mat.G0 = *dk.G0;
+    mat.s0 = critical_stretch_from_g0(dk.dim, dk.shape, mat.c0, dk.horizon, dk.thickness, *dk.G0);
+  } else if (dk.s0) {
+    mat.s0 = *dk.s0;
+  } else {
+    mat.s0 = INFINITY;
+  }
+  mat.wave_speed = std::sqrt(p_wave_modulus(dk.dim, dk.plane, dk.E, mat.nu) / dk.rho);
+  for (std::size_t i = 0; i < ns.size(); ++i) {
+    ns.horizon[i] = dk.horizon;
+    ns.density[i] = dk.rho;
+    ns.micromodulus[i] = mat.c0;
+    ns.critical_stretch[i] = mat.s0;
+  }
+  m.damage_enabled = dk.damage;
+
+  QuadratureSpec qs;
+  qs.rule = dk.quadrature;
+  qs.lattice_rotation = dk.grid.rotation_deg * 3.14159265358979323846 / 180.0;
+  m.bonds = build_families(ns, qs);
+  m.precrack_bonds = apply_precracks(ns, m.bonds, dk.cracks);
+  update_damage_weights(ns, m.bonds);
+
+  const double tol = 1e-9 * dk.grid.spacing;
+  for (std::size_t r = 0; r < dk.no_fail.size(); ++r)
+    for (std::uint32_t i : select(ns, dk.no_fail[r], tol)) ns.flags[i] |= kNoFail;
+
+  for (const LoadSpec& ls : dk.loads) {
+    BodyLoad bl;
+    bl.name = ls.name;
+    bl.nodes = select(ns, ls.region, tol);
+    if (bl.nodes.empty())
+      throw DeckError(dk.file, 0, 0, ls.name + ".region", "the region selects no nodes");
+    // A traction t spread over a layer of depth h acts as the body-force density t / h
+    // (thesis ch. 6 loads one row of nodes: h = grid spacing).
+    const double scale = ls.kind == LoadSpec::Kind::Traction
+                             ? 1.0 / (ls.layer > 0 ? ls.layer : dk.grid.spacing)
+                             : 1.0;
+    for (int d = 0; d < 3; ++d) bl.density[d] = ls.value[d] * scale;
+    bl.amplitude = ls.time;
+    m.loads.push_back(std::move(bl));
+  }
+  for (const MotionSpec& ms : dk.motions) {
+    PrescribedMotion pm;
+    pm.name = ms.name;
+    pm.kind = ms.kind == MotionSpec::Kind::Velocity ? PrescribedMotion::Kind::Velocity
+                                                    : PrescribedMotion::Kind::Displacement;
+    pm.nodes = select(ns, ms.region, tol);
+    if (pm.nodes.empty())
+      throw DeckError(dk.file, 0, 0, ms.name + ".region", "the region selects no nodes");
+    for (int d = 0; d < 3; ++d)
+      if (ms.component[d]) pm.component[d] = Expression(*ms.component[d]);
+    for (std::uint32_t i : pm.nodes) ns.flags[i] |= kBoundary;
+    m.motions.push_back(std::move(pm));
+  }
+  for (int d = 0; d < dk.dim; ++d) {
+    if (dk.initial_displacement[d]) {
+      Expression e(*dk.initial_displacement[d]);
+      for (std::size_t i = 0; i < ns.size(); ++i) {
+        ns.u[d][i] = e(ns.x[0][i], ns.x[1][i], ns.x[2][i], 0.0);
+        ns.y[d][i] = ns.x[d][i] + ns.u[d][i];
+      }
+    }
+    if (dk.initial_velocity[d]) {
+      Expression e(*dk.initial_velocity[d]);
+      for (std::size_t i = 0; i < ns.size(); ++i)
+        ns.v[d][i] = e(ns.x[0][i], ns.x[1][i], ns.x[2][i], 0.0);
+    }
+  }
+  for (int d = 0; d < dk.dim; ++d)
+    for (std::size_t i = 0; i < ns.size(); ++i)
+      if (!std::isfinite(ns.u[d][i]) || !std::isfinite(ns.v[d][i]))
+        throw DeckError(dk.file, 0, 0, "initial_conditions",
+                        "an initial field is not finite at node " + std::to_string(i));
+  return m;
+}
+
+}  // namespace periadapt

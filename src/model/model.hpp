@@ -1,0 +1,56 @@
+#pragma once
+// The simulation model the solvers act on: nodes, bond families, material law, loads and
+// prescribed motions. Built from a deck by build_model(); mutated between steps by adaptivity.
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/bond_families.hpp"
+#include "core/expression.hpp"
+#include "core/node_set.hpp"
+#include "material/micromodulus.hpp"
+#include "model/time_function.hpp"
+
+namespace periadapt {
+
+struct BodyLoad {
+  std::string name;
+  std::vector<std::uint32_t> nodes;
+  std::array<double, 3> density{0, 0, 0};  // body-force density at amplitude 1 (N/m^3)
+  TimeFunction amplitude;
+};
+
+struct PrescribedMotion {
+  enum class Kind { Velocity, Displacement } kind = Kind::Velocity;
+  std::string name;
+  std::vector<std::uint32_t> nodes;
+  std::array<std::optional<Expression>, 3> component;  // unset: free component
+};
+
+struct MaterialLaw {
+  std::string name = "material";
+  double E = 0, nu = 0, rho = 0;
+  double G0 = 0;                 // 0 when s0 was given directly
+  double s0 = 0;
+  double c0 = 0;
+  double wave_speed = 0;         // P-wave speed for reports
+  InfluenceShape shape = InfluenceShape::Constant;
+  PlaneCondition plane = PlaneCondition::None;
+  double thickness = 1.0;
+};
+
+struct Model {
+  NodeSet nodes;
+  BondFamilies bonds;
+  MaterialLaw material;
+  bool damage_enabled = true;
+  std::vector<BodyLoad> loads;
+  std::vector<PrescribedMotion> motions;
+  std::size_t precrack_bonds = 0;  // directed entries broken by pre-cracks
+  double grid_spacing = 0;
+  double horizon = 0;
+};
+
+}  // namespace periadapt

@@ -1,0 +1,23 @@
+#include "solver/stable_time_step.hpp"
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "material/pmb.hpp"
+
+namespace periadapt {
+
+StableStep stable_time_step(const Model& model) {
+  std::vector<double> K;
+  pmb_stiffness_sum(model.nodes, model.bonds, model.material.shape, K);
+  StableStep best{std::numeric_limits<double>::infinity(), 0};
+  for (std::size_t i = 0; i < K.size(); ++i) {
+    if (!(model.nodes.flags[i] & kActive) || K[i] <= 0) continue;
+    const double dt = std::sqrt(2.0 * model.nodes.density[i] / K[i]);
+    if (dt < best.dt) best = {dt, i};
+  }
+  return best;
+}
+
+}  // namespace periadapt

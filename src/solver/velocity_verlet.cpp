@@ -1,0 +1,170 @@
+#include "solver/velocity_verlet.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "material/pmb.hpp"
+
+namespace periadapt {
+
+VelocityVerlet::VelocityVerlet(Model& model, double dt) : m_(model), dt_(dt) {
+  const NodeSet& ns = m_.nodes;
+  // A displacement larger than 100 body sizes can only come from an instability.
+  double extent = 0;
+  for (int d = 0; d < ns.dim; ++d) {
+    auto [lo, hi] = std::minmax_element(ns.x[d].begin(), ns.x[d].end());
+    if (lo != ns.x[d].end()) extent = std::max(extent, *hi - *lo);
+  }
+  runaway_limit_ = 100.0 * std::max(extent, m_.grid_spacing);
+  for (const PrescribedMotion& pm : m_.motions)
+    for (std::uint32_t i : pm.nodes)
+      for (int d = 0; d < ns.dim; ++d)
+        if (pm.component[d]) fixed_dofs_.push_back(static_cast<std::size_t>(i) * 3 + d);
+  std::sort(fixed_dofs_.begin(), fixed_dofs_.end());
+  fixed_dofs_.erase(std::unique(fixed_dofs_.begin(), fixed_dofs_.end()), fixed_dofs_.end());
+  reaction_.assign(fixed_dofs_.size(), 0.0);
+  v_prev_fixed_.assign(fixed_dofs_.size(), 0.0);
+}
+
+void VelocityVerlet::apply_loads(double t) {
+  NodeSet& ns = m_.nodes;
+  for (int d = 0; d < 3; ++d) std::fill(ns.b[d].begin(), ns.b[d].end(), 0.0);
+  for (const BodyLoad& L : m_.loads) {
+    const double amp = L.amplitude(t);
+    for (std::uint32_t i : L.nodes)
+      for (int d = 0; d < ns.dim; ++d) ns.b[d][i] += amp * L.density[d];
+  }
+}
+
+void VelocityVerlet::impose_motions(double t, bool velocities_only) {
+  NodeSet& ns = m_.nodes;
+  for (const PrescribedMotion& pm : m_.motions) {
+    for (std::uint32_t i : pm.nodes) {
+      const double X = ns.x[0][i], Y = ns.x[1][i], Z = ns.x[2][i];
+      for (int d = 0; d < ns.dim; ++d) {
+        if (!pm.component[d]) continue;
+        const Expression& e = *pm.component[d];
+        if (pm.kind == PrescribedMotion::Kind::Velocity) {
+          ns.v[d][i] = e(X, Y, Z, t);
+        } else if (!velocities_only) {
+          const double un = e(X, Y, Z, t);
+          ns.u[d][i] = un;
+          // Velocity consistent with the prescribed path (central difference).
+          const double h = 0.5 * dt_;
+          ns.v[d][i] = e.depends_on_time() ? (e(X, Y, Z, t + h) - e(X, Y, Z, t - h)) / dt_ : 0.0;
+        }
+      }
+    }
+  }
+}
+
+void VelocityVerlet::compute_accelerations() {
+  NodeSet& ns = m_.nodes;
+  const PmbStepStats st = pmb_forces(ns, m_.bonds, m_.material.shape, m_.damage_enabled);
+  broken_total_ += st.newly_broken;
+  bond_evals_ += static_cast<double>(m_.bonds.num_bonds());
+  const std::size_t n = ns.size();
+  const int dim = ns.dim;
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    const double inv_rho = 1.0 / ns.density[i];
+    for (int d = 0; d < dim; ++d) ns.a[d][i] = (ns.f[d][i] + ns.b[d][i]) * inv_rho;
+  }
+  // Constrained components follow their prescribed path: record the reaction density needed.
+  for (std::size_t q = 0; q < fixed_dofs_.size(); ++q) {
+    const std::size_t i = fixed_dofs_[q] / 3;
+    const int d = static_cast<int>(fixed_dofs_[q] % 3);
+    const double acc = step_ > 0 ? (ns.v[d][i] - v_prev_fixed_[q]) / dt_ : 0.0;
+    reaction_[q] = ns.density[i] * acc - ns.f[d][i] - ns.b[d][i];
+    ns.a[d][i] = 0.0;
+  }
+}
+
+double VelocityVerlet::external_power() const {
+  const NodeSet& ns = m_.nodes;
+  double p = 0;
+  for (const BodyLoad& L : m_.loads)
+    for (std::uint32_t i : L.nodes)
+      for (int d = 0; d < ns.dim; ++d) p += ns.b[d][i] * ns.v[d][i] * ns.volume[i];
+  for (std::size_t q = 0; q < fixed_dofs_.size(); ++q) {
+    const std::size_t i = fixed_dofs_[q] / 3;
+    const int d = static_cast<int>(fixed_dofs_[q] % 3);
+    p += reaction_[q] * ns.v[d][i] * ns.volume[i];
+  }
+  return p;
+}
+
+void VelocityVerlet::initialize() {
+  impose_motions(time_, false);
+  NodeSet& ns = m_.nodes;
+  for (int d = 0; d < 3; ++d)
+    for (std::size_t i = 0; i < ns.size(); ++i) ns.y[d][i] = ns.x[d][i] + ns.u[d][i];
+  for (std::size_t q = 0; q < fixed_dofs_.size(); ++q)
+    v_prev_fixed_[q] = ns.v[fixed_dofs_[q] % 3][fixed_dofs_[q] / 3];
+  apply_loads(time_);
+  compute_accelerations();
+  last_power_ = external_power();
+}
+
+bool VelocityVerlet::step() {
+  NodeSet& ns = m_.nodes;
+  const std::size_t n = ns.size();
+  const int dim = ns.dim;
+  const double dt = dt_, hdt = 0.5 * dt_;
+  for (std::size_t q = 0; q < fixed_dofs_.size(); ++q)
+    v_prev_fixed_[q] = ns.v[fixed_dofs_[q] % 3][fixed_dofs_[q] / 3];
+
+  // Half-step velocity, then positions; motions with prescribed velocity use v(t + dt/2).
+  for (int d = 0; d < dim; ++d) {
+    double* v = ns.v[d].data();
+    const double* a = ns.a[d].data();
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) v[i] += hdt * a[i];
+  }
+  impose_motions(time_ + hdt, true);
+  std::size_t bad = n;
+  for (int d = 0; d < dim; ++d) {
+    double* u = ns.u[d].data();
+    double* y = ns.y[d].data();
+    const double* x = ns.x[d].data();
+    const double* v = ns.v[d].data();
+    const double lim = runaway_limit_;
+    std::size_t first_bad = n;
+#pragma omp parallel for schedule(static) reduction(min : first_bad)
+    for (std::size_t i = 0; i < n; ++i) {
+      u[i] += dt * v[i];
+      y[i] = x[i] + u[i];
+      if (!(std::abs(u[i]) <= lim)) first_bad = std::min(first_bad, i);
+    }
+    bad = std::min(bad, first_bad);
+  }
+  time_ += dt;
+  ++step_;
+  impose_motions(time_, false);
+  for (const PrescribedMotion& pm : m_.motions)
+    if (pm.kind == PrescribedMotion::Kind::Displacement)
+      for (std::uint32_t i : pm.nodes)
+        for (int d = 0; d < dim; ++d) ns.y[d][i] = ns.x[d][i] + ns.u[d][i];
+  if (bad < n) {
+    divergence_ = {bad, step_, time_,
+                   std::isfinite(ns.u[0][bad]) ? "displacement exceeds 100x the body size"
+                                               : "non-finite displacement"};
+    return false;
+  }
+
+  apply_loads(time_);
+  compute_accelerations();
+  for (int d = 0; d < dim; ++d) {
+    double* v = ns.v[d].data();
+    const double* a = ns.a[d].data();
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) v[i] += hdt * a[i];
+  }
+  impose_motions(time_, true);
+  const double p = external_power();
+  external_work_ += 0.5 * (p + last_power_) * dt;
+  last_power_ = p;
+  return true;
+}
+
+}  // namespace periadapt

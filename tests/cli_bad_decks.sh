@@ -1,0 +1,16 @@
+#!/usr/bin/env bash
+# Each bad deck must exit with code 2 and an error naming the file, the key and the line.
+set -u
+bin="$1"; dir="$2"; fail=0
+check() {  # deck expected-substring
+  out=$("$bin" check "$dir/$1" 2>&1); rc=$?
+  if [[ $rc -ne 2 ]]; then echo "FAIL $1: exit code $rc (want 2): $out"; fail=1; return; fi
+  if [[ "$out" != *"$2"* ]]; then echo "FAIL $1: message lacks '$2': $out"; fail=1; return; fi
+  echo "ok   $1: $out"
+}
+check unknown_key.yaml "unknown_key.yaml:5:3: key 'material.fracture_enrgy': unknown key; did you mean 'fracture_energy'?"
+check negative_modulus.yaml "negative_modulus.yaml:3:19: key 'material.youngs_modulus': must be > 0"
+check malformed.yaml "malformed.yaml:4:"
+out=$("$bin" check "$dir/does_not_exist.yaml" 2>&1); rc=$?
+[[ $rc -eq 2 && "$out" == *"cannot open"* ]] && echo "ok   missing file: $out" || { echo "FAIL missing file: $rc $out"; fail=1; }
+exit $fail

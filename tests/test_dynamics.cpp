@@ -1,0 +1,135 @@
+// Explicit dynamics: momentum conservation, energy conservation, wave arrival, stability.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "analysis/energy.hpp"
+#include "app/simulation.hpp"
+#include "io/deck_error.hpp"
+#include "solver/velocity_verlet.hpp"
+#include "test_helpers.hpp"
+
+using namespace periadapt;
+
+TEST(Dynamics, FreeBodyConservesLinearMomentumWithBreaking) {
+  // Random-looking initial velocities large enough to break bonds; no loads, no constraints.
+  const std::string yaml =
+      "model: {dimension: 2, plane: stress}\n"
+      "material: {youngs_modulus: 72.0e9, density: 2440, fracture_energy: 135}\n"
+      "discretization: {spacing: 0.001, horizon_factor: 3.015, body: {box: {min: [0, 0], max: [0.03, 0.02]}}}\n"
+      "initial_conditions:\n"
+      "  velocity: ['40*sin(977*x)*cos(311*y) + 3', '25*cos(1201*x+0.3)*sin(713*y)']\n"
+      "solver: {steps: 300}\n";
+  const Deck dk = test::deck_from(yaml);
+  Model m = build_model(dk);
+  const TimeStepChoice ts = choose_time_step(dk, m);
+  const auto p0 = linear_momentum(m.nodes);
+  double scale = 0;
+  for (std::size_t i = 0; i < m.nodes.size(); ++i)
+    scale += m.nodes.density[i] * m.nodes.volume[i] *
+             (std::abs(m.nodes.v[0][i]) + std::abs(m.nodes.v[1][i]));
+  VelocityVerlet vv(m, ts.dt);
+  vv.initialize();
+  for (long s = 0; s < ts.steps; ++s) ASSERT_TRUE(vv.step());
+  EXPECT_GT(vv.broken_bonds(), 0u) << "the test should exercise bond breaking";
+  const auto p1 = linear_momentum(m.nodes);
+  EXPECT_NEAR(p1[0], p0[0], 1e-12 * scale);
+  EXPECT_NEAR(p1[1], p0[1], 1e-12 * scale);
+}
+
+TEST(Dynamics, GaussianPulseConservesEnergyInAPlate) {
+  // Plane-stress plate 0.1 x 0.04 (thesis 4.2 geometry), E = rho = 1, free edges, a Gaussian
+  // pulse in u_x crossing the plate and reflecting; total energy must stay within 0.5%.
+  const std::string yaml =
+      "model: {dimension: 2, plane: stress}\n"
+      "material: {youngs_modulus: 1.0, density: 1.0}\n"
+      "discretization: {spacing: 0.001, horizon_factor: 3.015, body: {box: {min: [0, 0], max: [0.1, 0.04]}}}\n"
+      "initial_conditions: {displacement: ['1e-5*exp(-((x-0.05)/0.01)^2)', '0']}\n"
+      "damage: {enabled: false}\n"
+      "solver: {end_time: 0.1, safety_factor: 0.5}\n";
+  const Deck dk = test::deck_from(yaml);
+  Model m = build_model(dk);
+  const TimeStepChoice ts = choose_time_step(dk, m);
+  VelocityVerlet vv(m, ts.dt);
+  vv.initialize();
+  std::vector<double> W;
+  const double E0 = kinetic_energy(m.nodes) + strain_energy(m, W);
+  ASSERT_GT(E0, 0);
+  double worst = 0, maxK = 0;
+  for (long s = 0; s < ts.steps; ++s) {
+    ASSERT_TRUE(vv.step());
+    const double K = kinetic_energy(m.nodes);
+    maxK = std::max(maxK, K);
+    worst = std::max(worst, std::abs(K + strain_energy(m, W) - E0) / E0);
+  }
+  EXPECT_GT(maxK, 0.3 * E0) << "the pulse must actually move";
+  EXPECT_LT(worst, 0.005);
+}
+
+TEST(Dynamics, OneDimensionalPulseArrivesAtTheClassicalTime) {
+  // Bobaru et al. 2009, 6.2: u0 = 0.02 exp(-0.01 x^2) splits into two pulses of amplitude 0.01
+  // travelling at c = sqrt(E/rho) = 1. After t = 100 the right peak must be at x = 100 (2%).
+  const std::string yaml =
+      "model: {dimension: 1}\n"
+      "material: {youngs_modulus: 1.0, density: 1.0}\n"
+      "discretization: {spacing: 0.25, horizon_factor: 4, body: {box: {min: [-160], max: [160]}}}\n"
+      "initial_conditions: {displacement: ['0.02*exp(-0.01*x^2)']}\n"
+      "damage: {enabled: false}\n"
+      "solver: {end_time: 100}\n";
+  const Deck dk = test::deck_from(yaml);
+  Model m = build_model(dk);
+  TimeStepChoice ts = choose_time_step(dk, m);
+  ts.dt = 100.0 / ts.steps;  // land exactly on t = 100
+  VelocityVerlet vv(m, ts.dt);
+  vv.initialize();
+  for (long s = 0; s < ts.steps; ++s) ASSERT_TRUE(vv.step());
+  std::size_t peak = 0;
+  for (std::size_t i = 0; i < m.nodes.size(); ++i)
+    if (m.nodes.x[0][i] > 0 && m.nodes.u[0][i] > m.nodes.u[0][peak]) peak = i;
+  // Parabolic refinement of the peak position.
+  const double um = m.nodes.u[0][peak - 1], u0 = m.nodes.u[0][peak], up = m.nodes.u[0][peak + 1];
+  const double xpk = m.nodes.x[0][peak] + 0.25 * 0.5 * (um - up) / (um - 2 * u0 + up);
+  EXPECT_NEAR(xpk, 100.0, 2.0);
+  EXPECT_NEAR(u0, 0.01, 0.0005);
+}
+
+TEST(Dynamics, TimeStepAboveTheStableBoundIsRejected) {
+  const std::string base =
+      "model: {dimension: 1}\n"
+      "material: {youngs_modulus: 1.0, density: 1.0}\n"
+      "discretization: {spacing: 0.25, horizon_factor: 3, body: {box: {min: [0], max: [20]}}}\n"
+      "initial_conditions: {displacement: ['0.001*exp(-(x-10)^2)']}\n"
+      "damage: {enabled: false}\n";
+  const Deck probe = test::deck_from(base + "solver: {steps: 10}\n");
+  const Model m = build_model(probe);
+  const double crit = choose_time_step(probe, m).dt_crit;
+  const Deck bad = test::deck_from(base + "solver: {steps: 10, time_step: " +
+                                   std::to_string(1.5 * crit) + "}\n");
+  try {
+    choose_time_step(bad, m);
+    FAIL() << "expected a DeckError";
+  } catch (const DeckError& e) {
+    EXPECT_EQ(e.key(), "solver.time_step");
+    EXPECT_NE(std::string(e.what()).find("stable time step"), std::string::npos);
+  }
+}
+
+TEST(Dynamics, DivergingRunStopsWithADiagnosis) {
+  // Three times the stable step, explicitly allowed: the run must stop with the node and step,
+  // never return NaN fields.
+  const std::string yaml =
+      "model: {dimension: 1}\n"
+      "material: {youngs_modulus: 1.0, density: 1.0}\n"
+      "discretization: {spacing: 0.25, horizon_factor: 3, body: {box: {min: [0], max: [20]}}}\n"
+      "initial_conditions: {displacement: ['0.001*exp(-(x-10)^2)']}\n"
+      "damage: {enabled: false}\n"
+      "solver: {steps: 5000, time_step: 1.2, allow_unstable_time_step: true}\n";
+  RunOptions ro;
+  ro.write_files = false;
+  ro.quiet = true;
+  RunResult r = run_simulation(test::deck_from(yaml), ro);
+  ASSERT_TRUE(r.diverged);
+  EXPECT_EQ(r.summary["status"], "diverged");
+  EXPECT_GT(r.summary["divergence"]["step"].get<long>(), 0);
+  EXPECT_LT(r.summary["divergence"]["node"].get<std::size_t>(), r.model.nodes.size());
+}
