@@ -3,9 +3,11 @@
 // (full lists), so the force loop writes only to its own node and needs no atomics; variable and
 // dual horizons need the two directions to differ anyway.
 //
-// Per bond: neighbor id (4 B), reference length (8 B), quadrature fraction beta (4 B) = 16 B.
-// A broken bond keeps its entry with beta stored negated: the kernel skips it and damage still
-// knows its weight.
+// Per bond: neighbor id (4 B), inverse reference length (8 B), quadrature fraction beta (4 B)
+// = 16 B. Two flags ride on signs, so the force loop needs no extra gathers:
+//  - a broken bond keeps its entry with beta negated (skipped; damage still knows its weight);
+//  - an unbreakable bond (an end in a no-fail region) has its inverse length negated.
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -14,7 +16,7 @@ namespace periadapt {
 struct BondFamilies {
   std::vector<std::uint64_t> offsets{0};  // size n+1
   std::vector<std::uint32_t> neighbor;
-  std::vector<double> length;
+  std::vector<double> inv_length;  // 1/|xi|, negative when the bond cannot break
   std::vector<float> beta;
 
   std::size_t num_nodes() const { return offsets.size() - 1; }
@@ -22,6 +24,8 @@ struct BondFamilies {
   std::uint64_t begin(std::size_t i) const { return offsets[i]; }
   std::uint64_t end(std::size_t i) const { return offsets[i + 1]; }
   static bool intact(float b) { return b > 0.0f; }
+  double length(std::size_t k) const { return 1.0 / std::abs(inv_length[k]); }
+  bool breakable(std::size_t k) const { return inv_length[k] > 0.0; }
   static constexpr std::size_t bytes_per_bond() { return 4 + 8 + 4; }
 };
 

@@ -17,11 +17,13 @@ struct NodeSet {
   int dim = 2;
   std::array<std::vector<double>, 3> x;  // reference position
   std::array<std::vector<double>, 3> u;  // displacement
-  std::array<std::vector<double>, 3> y;  // current position x + u (kept for the bond loops)
   std::array<std::vector<double>, 3> v;  // velocity
   std::array<std::vector<double>, 3> a;  // acceleration
   std::array<std::vector<double>, 3> f;  // internal force density (N/m^3)
   std::array<std::vector<double>, 3> b;  // external body-force density (N/m^3)
+  // Current position y = x + u and volume packed per node [y0, y1, y2, V]: the bond loops
+  // gather one cache line per neighbor instead of four.
+  std::vector<double> cur;
   std::vector<double> volume;    // quadrature volume (m^3)
   std::vector<double> spacing;   // grid spacing of the node's cell
   std::vector<double> horizon;   // per-node horizon delta_i
@@ -40,12 +42,12 @@ struct NodeSet {
     for (int d = 0; d < 3; ++d) {
       x[d].push_back(pos[d]);
       u[d].push_back(0.0);
-      y[d].push_back(pos[d]);
       v[d].push_back(0.0);
       a[d].push_back(0.0);
       f[d].push_back(0.0);
       b[d].push_back(0.0);
     }
+    cur.insert(cur.end(), {pos[0], pos[1], pos[2], vol});
     volume.push_back(vol);
     spacing.push_back(dx);
     horizon.push_back(0.0);
@@ -59,12 +61,22 @@ struct NodeSet {
     return volume.size() - 1;
   }
 
+  double current(std::size_t i, int d) const { return cur[4 * i + d]; }
+  // Refreshes the packed current position and volume of node i from x, u and volume.
+  void sync_current(std::size_t i) {
+    for (int d = 0; d < 3; ++d) cur[4 * i + d] = x[d][i] + u[d][i];
+    cur[4 * i + 3] = volume[i];
+  }
+  void sync_all_current() {
+    for (std::size_t i = 0; i < size(); ++i) sync_current(i);
+  }
+
   double damage(std::size_t i) const {
     return family_weight[i] > 0 ? broken_weight[i] / family_weight[i] : 0.0;
   }
 
   // Bytes held per node by the arrays above (for memory reports).
-  static constexpr std::size_t bytes_per_node() { return 7 * 3 * 8 + 9 * 8 + 2; }
+  static constexpr std::size_t bytes_per_node() { return 6 * 3 * 8 + 4 * 8 + 9 * 8 + 2; }
 };
 
 }  // namespace periadapt

@@ -60,7 +60,7 @@ BondFamilies build_families(const NodeSet& nodes, const QuadratureSpec& quad) {
         }
         if (b <= 0) return;
         ch.nbr.push_back(j);
-        ch.len.push_back(xi);
+        ch.len.push_back(1.0 / xi);
         ch.beta.push_back(static_cast<float>(b));
       });
       // Sorted families: deterministic and friendlier to the caches in the force loop.
@@ -88,7 +88,7 @@ BondFamilies build_families(const NodeSet& nodes, const QuadratureSpec& quad) {
   for (std::size_t i = 0; i < n; ++i) fam.offsets[i + 1] = fam.offsets[i] + counts[i];
   const std::size_t total = fam.offsets[n];
   fam.neighbor.resize(total);
-  fam.length.resize(total);
+  fam.inv_length.resize(total);
   fam.beta.resize(total);
 #pragma omp parallel num_threads(nthreads)
   {
@@ -98,7 +98,7 @@ BondFamilies build_families(const NodeSet& nodes, const QuadratureSpec& quad) {
     const Chunk& ch = chunks[static_cast<std::size_t>(t)];
     const std::size_t dst = fam.offsets[lo];
     std::copy(ch.nbr.begin(), ch.nbr.end(), fam.neighbor.begin() + static_cast<long>(dst));
-    std::copy(ch.len.begin(), ch.len.end(), fam.length.begin() + static_cast<long>(dst));
+    std::copy(ch.len.begin(), ch.len.end(), fam.inv_length.begin() + static_cast<long>(dst));
     std::copy(ch.beta.begin(), ch.beta.end(), fam.beta.begin() + static_cast<long>(dst));
   }
   return fam;

@@ -38,7 +38,10 @@ void colour(double t, double& r, double& g, double& b) {
 void write_field_png(const std::string& path, const NodeSet& ns, const std::vector<double>& field,
                      const PngOptions& opt) {
   const int dim = ns.dim;
-  const std::array<std::vector<double>, 3>& P = opt.deformed ? ns.y : ns.x;
+  std::array<std::vector<double>, 3> P = ns.x;
+  if (opt.deformed)
+    for (int d = 0; d < 3; ++d)
+      for (std::size_t i = 0; i < ns.size(); ++i) P[d][i] = ns.current(i, d);
   double xmin = INFINITY, xmax = -INFINITY, ymin = INFINITY, ymax = -INFINITY, hmax = 0;
   for (std::size_t i = 0; i < ns.size(); ++i) {
     if (!(ns.flags[i] & kActive)) continue;

@@ -1,5 +1,6 @@
 #include "material/pmb.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace periadapt {
@@ -19,14 +20,11 @@ inline double g(double t) {
 template <int D, InfluenceShape S>
 std::size_t forces_kernel(NodeSet& ns, BondFamilies& bf, bool allow_breaking) {
   const std::size_t n = ns.size();
-  const double* y0 = ns.y[0].data();
-  const double* y1 = ns.y[1].data();
-  const double* y2 = ns.y[2].data();
-  const double* vol = ns.volume.data();
+  const double* yp = ns.cur.data();
   const std::uint8_t* flags = ns.flags.data();
   const std::uint64_t* off = bf.offsets.data();
   const std::uint32_t* nbr = bf.neighbor.data();
-  const double* len = bf.length.data();
+  const double* inv_len = bf.inv_length.data();
   float* beta = bf.beta.data();
   double* f0 = ns.f[0].data();
   double* f1 = ns.f[1].data();
@@ -36,44 +34,72 @@ std::size_t forces_kernel(NodeSet& ns, BondFamilies& bf, bool allow_breaking) {
 #pragma omp parallel for schedule(dynamic, 512) reduction(+ : broken_total)
   for (std::size_t i = 0; i < n; ++i) {
     if (!(flags[i] & kActive)) continue;
-    const double yi0 = y0[i];
-    const double yi1 = D > 1 ? y1[i] : 0.0;
-    const double yi2 = D > 2 ? y2[i] : 0.0;
+    const double yi0 = yp[4 * i];
+    const double yi1 = D > 1 ? yp[4 * i + 1] : 0.0;
+    const double yi2 = D > 2 ? yp[4 * i + 2] : 0.0;
     const double ci = ns.micromodulus[i];
-    const double s0 = ns.critical_stretch[i];
-    const double inv_delta = 1.0 / ns.horizon[i];
-    const bool can_break = allow_breaking && !(flags[i] & kNoFail);
-    double a0 = 0, a1 = 0, a2 = 0, bw = 0;
-    std::size_t nb = 0;
+    // A bond breaks when s > s0; s0 = +inf when this node cannot break bonds.
+    const double s0 = (allow_breaking && !(flags[i] & kNoFail)) ? ns.critical_stretch[i] : INFINITY;
+    const double delta = ns.horizon[i];
     const std::uint64_t kb = off[i], ke = off[i + 1];
-#pragma omp simd reduction(+ : a0, a1, a2, bw, nb)
+    double a0 = 0, a1 = 0, a2 = 0;
+    double smax = -INFINITY;
+    // Fast pass: forces of intact bonds and the largest stretch; nothing is written per bond.
+#pragma omp simd reduction(+ : a0, a1, a2) reduction(max : smax)
     for (std::uint64_t k = kb; k < ke; ++k) {
-      const float b = beta[k];
-      if (b > 0.0f) {
+      const std::uint32_t j = nbr[k];
+      const double d0 = yp[4 * j] - yi0;
+      const double d1 = D > 1 ? yp[4 * j + 1] - yi1 : 0.0;
+      const double d2 = D > 2 ? yp[4 * j + 2] - yi2 : 0.0;
+      const double r = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2);
+      const double ail = std::abs(inv_len[k]);
+      const double bp = std::max(static_cast<double>(beta[k]), 0.0);  // 0 when broken
+      double gw = bp * yp[4 * j + 3];
+      if constexpr (S != InfluenceShape::Constant) gw *= g<S>(1.0 / (ail * delta));
+      const double s = r * ail - 1.0;
+      smax = std::max(smax, bp > 0.0 ? s : -INFINITY);
+      // f = c g s beta V e,  s / r = 1/L - 1/r
+      const double fr = ci * gw * (ail - 1.0 / r);
+      a0 += fr * d0;
+      a1 += fr * d1;
+      a2 += fr * d2;
+    }
+    if (smax > s0) {
+      // Rare: some bond of this node breaks now. Break it and redo the node without it.
+      a0 = a1 = a2 = 0;
+      double bw = 0;
+      std::size_t nb = 0;
+      for (std::uint64_t k = kb; k < ke; ++k) {
+        const float b = beta[k];
+        if (!(b > 0.0f)) continue;
         const std::uint32_t j = nbr[k];
-        const double d0 = y0[j] - yi0;
-        const double d1 = D > 1 ? y1[j] - yi1 : 0.0;
-        const double d2 = D > 2 ? y2[j] - yi2 : 0.0;
+        const double d0 = yp[4 * j] - yi0;
+        const double d1 = D > 1 ? yp[4 * j + 1] - yi1 : 0.0;
+        const double d2 = D > 2 ? yp[4 * j + 2] - yi2 : 0.0;
         const double r = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2);
-        const double L = len[k];
-        const double s = (r - L) / L;
-        if (can_break && s > s0 && !(flags[j] & kNoFail)) {
+        const double il = inv_len[k];
+        const double ail = std::abs(il);
+        const double s = r * ail - 1.0;
+        const double bv = static_cast<double>(b) * yp[4 * j + 3];
+        if (il > 0.0 && s > s0) {
           beta[k] = -b;
-          bw += static_cast<double>(b) * vol[j];
-          nb += 1;
-        } else {
-          const double fr = ci * g<S>(L * inv_delta) * s * static_cast<double>(b) * vol[j] / r;
-          a0 += fr * d0;
-          a1 += fr * d1;
-          a2 += fr * d2;
+          bw += bv;
+          ++nb;
+          continue;
         }
+        double gw = bv;
+        if constexpr (S != InfluenceShape::Constant) gw *= g<S>(1.0 / (ail * delta));
+        const double fr = ci * gw * (ail - 1.0 / r);
+        a0 += fr * d0;
+        a1 += fr * d1;
+        a2 += fr * d2;
       }
+      ns.broken_weight[i] += bw;
+      broken_total += nb;
     }
     f0[i] = a0;
     if constexpr (D > 1) f1[i] = a1;
     if constexpr (D > 2) f2[i] = a2;
-    ns.broken_weight[i] += bw;
-    broken_total += nb;
   }
   return broken_total;
 }
@@ -93,10 +119,10 @@ void energy_kernel(const NodeSet& ns, const BondFamilies& bf, std::vector<double
       const std::uint32_t j = bf.neighbor[k];
       double r2 = 0;
       for (int d = 0; d < D; ++d) {
-        const double t = ns.y[d][j] - ns.y[d][i];
+        const double t = ns.current(j, d) - ns.current(i, d);
         r2 += t * t;
       }
-      const double L = bf.length[k];
+      const double L = bf.length(k);
       const double s = (std::sqrt(r2) - L) / L;
       w += g<S>(L * inv_delta) * s * s * L * static_cast<double>(b) * ns.volume[j];
     }
@@ -113,7 +139,7 @@ void stiffness_kernel(const NodeSet& ns, const BondFamilies& bf, std::vector<dou
     const double inv_delta = 1.0 / ns.horizon[i];
     double k = 0;
     for (std::uint64_t q = bf.begin(i); q < bf.end(i); ++q) {
-      const double L = bf.length[q];
+      const double L = bf.length(q);
       k += g<S>(L * inv_delta) * std::abs(static_cast<double>(bf.beta[q])) *
            ns.volume[bf.neighbor[q]] / L;
     }

@@ -68,6 +68,13 @@ Model build_model(const Deck& dk) {
   const double tol = 1e-9 * dk.grid.spacing;
   for (std::size_t r = 0; r < dk.no_fail.size(); ++r)
     for (std::uint32_t i : select(ns, dk.no_fail[r], tol)) ns.flags[i] |= kNoFail;
+  // Bonds with an end in a no-fail region can never break (flag carried by the bond).
+  if (!dk.no_fail.empty()) {
+    for (std::size_t i = 0; i < ns.size(); ++i)
+      for (std::uint64_t k = m.bonds.begin(i); k < m.bonds.end(i); ++k)
+        if ((ns.flags[i] | ns.flags[m.bonds.neighbor[k]]) & kNoFail)
+          m.bonds.inv_length[k] = -std::abs(m.bonds.inv_length[k]);
+  }
 
   for (const LoadSpec& ls : dk.loads) {
     BodyLoad bl;
@@ -102,7 +109,6 @@ Model build_model(const Deck& dk) {
       Expression e(*dk.initial_displacement[d]);
       for (std::size_t i = 0; i < ns.size(); ++i) {
         ns.u[d][i] = e(ns.x[0][i], ns.x[1][i], ns.x[2][i], 0.0);
-        ns.y[d][i] = ns.x[d][i] + ns.u[d][i];
       }
     }
     if (dk.initial_velocity[d]) {
@@ -116,6 +122,7 @@ Model build_model(const Deck& dk) {
       if (!std::isfinite(ns.u[d][i]) || !std::isfinite(ns.v[d][i]))
         throw DeckError(dk.file, 0, 0, "initial_conditions",
                         "an initial field is not finite at node " + std::to_string(i));
+  ns.sync_all_current();
   return m;
 }
 

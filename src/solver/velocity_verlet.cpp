@@ -97,8 +97,7 @@ double VelocityVerlet::external_power() const {
 void VelocityVerlet::initialize() {
   impose_motions(time_, false);
   NodeSet& ns = m_.nodes;
-  for (int d = 0; d < 3; ++d)
-    for (std::size_t i = 0; i < ns.size(); ++i) ns.y[d][i] = ns.x[d][i] + ns.u[d][i];
+  ns.sync_all_current();
   for (std::size_t q = 0; q < fixed_dofs_.size(); ++q)
     v_prev_fixed_[q] = ns.v[fixed_dofs_[q] % 3][fixed_dofs_[q] / 3];
   apply_loads(time_);
@@ -125,7 +124,7 @@ bool VelocityVerlet::step() {
   std::size_t bad = n;
   for (int d = 0; d < dim; ++d) {
     double* u = ns.u[d].data();
-    double* y = ns.y[d].data();
+    double* y = ns.cur.data();
     const double* x = ns.x[d].data();
     const double* v = ns.v[d].data();
     const double lim = runaway_limit_;
@@ -133,7 +132,7 @@ bool VelocityVerlet::step() {
 #pragma omp parallel for schedule(static) reduction(min : first_bad)
     for (std::size_t i = 0; i < n; ++i) {
       u[i] += dt * v[i];
-      y[i] = x[i] + u[i];
+      y[4 * i + d] = x[i] + u[i];
       if (!(std::abs(u[i]) <= lim)) first_bad = std::min(first_bad, i);
     }
     bad = std::min(bad, first_bad);
@@ -144,7 +143,7 @@ bool VelocityVerlet::step() {
   for (const PrescribedMotion& pm : m_.motions)
     if (pm.kind == PrescribedMotion::Kind::Displacement)
       for (std::uint32_t i : pm.nodes)
-        for (int d = 0; d < dim; ++d) ns.y[d][i] = ns.x[d][i] + ns.u[d][i];
+        ns.sync_current(i);
   if (bad < n) {
     divergence_ = {bad, step_, time_,
                    std::isfinite(ns.u[0][bad]) ? "displacement exceeds 100x the body size"
