@@ -47,14 +47,18 @@ std::size_t forces_kernel(NodeSet& ns, BondFamilies& bf, bool allow_breaking) {
     // Fast pass: forces of intact bonds and the largest stretch; nothing is written per bond.
 #pragma omp simd reduction(+ : a0, a1, a2) reduction(max : smax)
     for (std::uint64_t k = kb; k < ke; ++k) {
-      const std::uint32_t j = nbr[k];
-      const double d0 = yp[4 * j] - yi0;
-      const double d1 = D > 1 ? yp[4 * j + 1] - yi1 : 0.0;
-      const double d2 = D > 2 ? yp[4 * j + 2] - yi2 : 0.0;
+      // 64-bit index arithmetic: a 32-bit 4*j would have to wrap and defeats the gathers.
+      const std::size_t j = 4 * static_cast<std::size_t>(nbr[k]);
+      const double d0 = yp[j] - yi0;
+      const double d1 = D > 1 ? yp[j + 1] - yi1 : 0.0;
+      const double d2 = D > 2 ? yp[j + 2] - yi2 : 0.0;
       const double r = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2);
       const double ail = std::abs(inv_len[k]);
-      const double bp = std::max(static_cast<double>(beta[k]), 0.0);  // 0 when broken
-      double gw = bp * yp[4 * j + 3];
+      // 0 when broken. Written branch-free: std::max (returns a reference) or a ternary here
+      // makes GCC 12 see control flow and give up vectorizing the whole loop.
+      const double bb = beta[k];
+      const double bp = 0.5 * (bb + std::abs(bb));
+      double gw = bp * yp[j + 3];
       if constexpr (S != InfluenceShape::Constant) gw *= g<S>(1.0 / (ail * delta));
       const double s = r * ail - 1.0;
       smax = std::max(smax, bp > 0.0 ? s : -INFINITY);
