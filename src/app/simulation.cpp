@@ -1,5 +1,7 @@
 #include "app/simulation.hpp"
 
+#include "core/process_memory.hpp"
+
 #include <omp.h>
 
 #include <chrono>
@@ -214,6 +216,20 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
   j["solver_time_s"] = solver_seconds;
   j["wall_time_s"] = wall;
   j["bond_evals_per_s"] = solver_seconds > 0 ? vv.bond_evaluations() / solver_seconds : 0.0;
+  {
+    // Resident memory of the model arrays, per bond and per node, and the process peak (which
+    // also holds the transient family-build buffers and output buffers).
+    const double nb = static_cast<double>(m.bonds.num_bonds());
+    const double nn = static_cast<double>(ns.size());
+    const double step_s = vv.step_count() > 0 ? solver_seconds / vv.step_count() : 0.0;
+    j["memory"] = {{"bytes_per_bond", BondFamilies::bytes_per_bond()},
+                   {"bytes_per_node", NodeSet::bytes_per_node()},
+                   {"model_bytes", nb * BondFamilies::bytes_per_bond() +
+                                       nn * NodeSet::bytes_per_node()},
+                   {"peak_rss_bytes", peak_rss_bytes()}};
+    j["family_build_time_s"] = m.family_build_seconds;
+    j["family_build_in_steps"] = step_s > 0 ? m.family_build_seconds / step_s : 0.0;
+  }
   j["material"] = {{"E", m.material.E},           {"nu", m.material.nu},
                    {"rho", m.material.rho},       {"G0", m.material.G0},
                    {"c0", m.material.c0},         {"s0", m.material.s0},

@@ -1,7 +1,5 @@
 #include "discretize/families.hpp"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 
@@ -22,84 +20,66 @@ BondFamilies build_families(const NodeSet& nodes, const QuadratureSpec& quad) {
   hmax = quadrature_search_radius(quad.rule, nodes.dim, hmax, dxmax);
   CellGrid grid(nodes.dim, {nodes.x[0].data(), nodes.x[1].data(), nodes.x[2].data()}, n, hmax);
 
-  struct Chunk {
-    std::vector<std::uint32_t> nbr;
-    std::vector<double> len;
-    std::vector<float> beta;
-  };
-  const int nthreads = omp_get_max_threads();
-  std::vector<Chunk> chunks(static_cast<std::size_t>(nthreads));
-  std::vector<std::uint64_t> counts(n, 0);
-
-#pragma omp parallel num_threads(nthreads)
-  {
-    const int t = omp_get_thread_num();
-    const int nt = omp_get_num_threads();
-    const std::size_t lo = n * t / nt, hi = n * (t + 1) / nt;
-    Chunk& ch = chunks[static_cast<std::size_t>(t)];
-    ch.nbr.reserve((hi - lo) * 64);
-    ch.len.reserve((hi - lo) * 64);
-    ch.beta.reserve((hi - lo) * 64);
-    for (std::size_t i = lo; i < hi; ++i) {
-      if (!(nodes.flags[i] & kActive)) continue;
-      const std::array<double, 3> p{nodes.x[0][i], nodes.x[1][i], nodes.x[2][i]};
-      const double delta = nodes.horizon[i];
-      const double radius = quadrature_search_radius(quad.rule, nodes.dim, delta, nodes.spacing[i]);
-      const std::size_t first = ch.nbr.size();
-      // Nodes exactly on the horizon (m integer) are included whatever the rounding.
-      grid.for_each_within(p, radius * (1 + 1e-12), [&](std::uint32_t j, double d2) {
-        if (j == i || !(nodes.flags[j] & kActive)) return;
-        const double xi = std::sqrt(d2);
-        double b;
-        if (quad.rule == Quadrature::Subcell) {
-          const std::array<double, 3> off{nodes.x[0][j] - p[0], nodes.x[1][j] - p[1],
-                                          nodes.x[2][j] - p[2]};
-          b = subcell_fraction(nodes.dim, off, delta, nodes.spacing[j], quad.lattice_rotation);
-        } else {
-          b = partial_volume_factor(quad.rule, std::min(xi, delta), delta, nodes.spacing[j]);
-        }
-        if (b <= 0) return;
-        ch.nbr.push_back(j);
-        ch.len.push_back(1.0 / xi);
-        ch.beta.push_back(static_cast<float>(b));
-      });
-      // Sorted families: deterministic and friendlier to the caches in the force loop.
-      const std::size_t cnt = ch.nbr.size() - first;
-      if (cnt > 1) {
-        std::vector<std::size_t> perm(cnt);
-        for (std::size_t k = 0; k < cnt; ++k) perm[k] = first + k;
-        std::sort(perm.begin(), perm.end(),
-                  [&](std::size_t a, std::size_t b) { return ch.nbr[a] < ch.nbr[b]; });
-        std::vector<std::uint32_t> tn(cnt);
-        std::vector<double> tl(cnt);
-        std::vector<float> tb(cnt);
-        for (std::size_t k = 0; k < cnt; ++k) {
-          tn[k] = ch.nbr[perm[k]];
-          tl[k] = ch.len[perm[k]];
-          tb[k] = ch.beta[perm[k]];
-        }
-        std::copy(tn.begin(), tn.end(), ch.nbr.begin() + static_cast<long>(first));
-        std::copy(tl.begin(), tl.end(), ch.len.begin() + static_cast<long>(first));
-        std::copy(tb.begin(), tb.end(), ch.beta.begin() + static_cast<long>(first));
+  // Calls visit(j, 1/xi, beta) for every family member of node i, in a fixed order.
+  auto visit_family = [&](std::size_t i, auto&& visit) {
+    const std::array<double, 3> p{nodes.x[0][i], nodes.x[1][i], nodes.x[2][i]};
+    const double delta = nodes.horizon[i];
+    const double radius = quadrature_search_radius(quad.rule, nodes.dim, delta, nodes.spacing[i]);
+    // Nodes exactly on the horizon (m integer) are included whatever the rounding.
+    grid.for_each_within(p, radius * (1 + 1e-12), [&](std::uint32_t j, double d2) {
+      if (j == i || !(nodes.flags[j] & kActive)) return;
+      const double xi = std::sqrt(d2);
+      double b;
+      if (quad.rule == Quadrature::Subcell) {
+        const std::array<double, 3> off{nodes.x[0][j] - p[0], nodes.x[1][j] - p[1],
+                                        nodes.x[2][j] - p[2]};
+        b = subcell_fraction(nodes.dim, off, delta, nodes.spacing[j], quad.lattice_rotation);
+      } else {
+        b = partial_volume_factor(quad.rule, std::min(xi, delta), delta, nodes.spacing[j]);
       }
-      counts[i] = cnt;
-    }
+      if (b > 0) visit(j, 1.0 / xi, static_cast<float>(b));
+    });
+  };
+
+  // Two passes (count, then fill in place) so that the only bond-sized memory ever allocated is
+  // the final CSR arrays: no per-thread buffers, no copy.
+#pragma omp parallel for schedule(dynamic, 256)
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!(nodes.flags[i] & kActive)) continue;
+    std::uint64_t cnt = 0;
+    visit_family(i, [&](std::uint32_t, double, float) { ++cnt; });
+    fam.offsets[i + 1] = cnt;
   }
-  for (std::size_t i = 0; i < n; ++i) fam.offsets[i + 1] = fam.offsets[i] + counts[i];
+  for (std::size_t i = 0; i < n; ++i) fam.offsets[i + 1] += fam.offsets[i];
   const std::size_t total = fam.offsets[n];
   fam.neighbor.resize(total);
   fam.inv_length.resize(total);
   fam.beta.resize(total);
-#pragma omp parallel num_threads(nthreads)
+
+  struct Entry {
+    std::uint32_t j;
+    float beta;
+    double inv_len;
+  };
+#pragma omp parallel
   {
-    const int t = omp_get_thread_num();
-    const int nt = omp_get_num_threads();
-    const std::size_t lo = n * t / nt;
-    const Chunk& ch = chunks[static_cast<std::size_t>(t)];
-    const std::size_t dst = fam.offsets[lo];
-    std::copy(ch.nbr.begin(), ch.nbr.end(), fam.neighbor.begin() + static_cast<long>(dst));
-    std::copy(ch.len.begin(), ch.len.end(), fam.inv_length.begin() + static_cast<long>(dst));
-    std::copy(ch.beta.begin(), ch.beta.end(), fam.beta.begin() + static_cast<long>(dst));
+    std::vector<Entry> scratch;
+#pragma omp for schedule(dynamic, 256)
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!(nodes.flags[i] & kActive)) continue;
+      scratch.clear();
+      visit_family(i, [&](std::uint32_t j, double il, float b) { scratch.push_back({j, b, il}); });
+      // Sorted families: independent of the cell layout and friendlier to the caches.
+      std::sort(scratch.begin(), scratch.end(),
+                [](const Entry& a, const Entry& b) { return a.j < b.j; });
+      std::size_t k = fam.offsets[i];
+      for (const Entry& e : scratch) {
+        fam.neighbor[k] = e.j;
+        fam.inv_length[k] = e.inv_len;
+        fam.beta[k] = e.beta;
+        ++k;
+      }
+    }
   }
   return fam;
 }

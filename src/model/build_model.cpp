@@ -1,5 +1,7 @@
 #include "model/build_model.hpp"
 
+#include <chrono>
+
 #include <cmath>
 
 #include "core/expression.hpp"
@@ -61,7 +63,10 @@ Model build_model(const Deck& dk) {
   QuadratureSpec qs;
   qs.rule = dk.quadrature;
   qs.lattice_rotation = dk.grid.rotation_deg * 3.14159265358979323846 / 180.0;
+  const auto t0 = std::chrono::steady_clock::now();
   m.bonds = build_families(ns, qs);
+  m.family_build_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   m.precrack_bonds = apply_precracks(ns, m.bonds, dk.cracks);
   update_damage_weights(ns, m.bonds);
 

@@ -51,6 +51,7 @@ struct Model {
   std::size_t precrack_bonds = 0;  // directed entries broken by pre-cracks
   double grid_spacing = 0;
   double horizon = 0;
+  double family_build_seconds = 0;  // wall time of the neighbor search and CSR build
 };
 
 }  // namespace periadapt

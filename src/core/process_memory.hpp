@@ -1,0 +1,9 @@
+#pragma once
+#include <cstddef>
+
+namespace periadapt {
+
+// Peak resident set size of this process so far, in bytes (0 where the OS does not say).
+std::size_t peak_rss_bytes();
+
+}  // namespace periadapt
