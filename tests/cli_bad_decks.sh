@@ -13,4 +13,10 @@ check negative_modulus.yaml "negative_modulus.yaml:3:19: key 'material.youngs_mo
 check malformed.yaml "malformed.yaml:4:"
 out=$("$bin" check "$dir/does_not_exist.yaml" 2>&1); rc=$?
 [[ $rc -eq 2 && "$out" == *"cannot open"* ]] && echo "ok   missing file: $out" || { echo "FAIL missing file: $rc $out"; fail=1; }
+# Only a solve can tell that a static system is singular: `run`, not `check`.
+tmp=$(mktemp -d)
+out=$("$bin" run "$dir/static_unconstrained.yaml" --out "$tmp" --quiet 2>&1); rc=$?
+rm -rf "$tmp"
+[[ $rc -eq 2 && "$out" == *"static_unconstrained.yaml"* && "$out" == *"singular system"* ]] \
+  && echo "ok   static_unconstrained.yaml: $out" || { echo "FAIL static_unconstrained.yaml: $rc $out"; fail=1; }
 exit $fail

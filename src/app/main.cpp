@@ -1,6 +1,8 @@
 // periadapt: command-line entry (run, check).
 #include <omp.h>
 
+#include <filesystem>
+
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <iostream>
@@ -8,6 +10,8 @@
 #include <fmt/format.h>
 
 #include "app/simulation.hpp"
+#include "app/static_run.hpp"
+#include "studies/bobaru_1d_static.hpp"
 #include "io/deck.hpp"
 #include "io/deck_error.hpp"
 #include "model/build_model.hpp"
@@ -19,7 +23,8 @@ namespace {
 int check(const std::string& path) {
   const Deck dk = load_deck(path);
   const Model m = build_model(dk);
-  const TimeStepChoice ts = choose_time_step(dk, m);
+  const bool is_static = dk.solver == Deck::SolverType::Static;
+  const TimeStepChoice ts = is_static ? TimeStepChoice{0, 0, 0, 0} : choose_time_step(dk, m);
   const MaterialLaw& mat = m.material;
   fmt::print("deck            {}\n", path);
   fmt::print("model           {}D PMB{}\n", dk.dim,
@@ -40,9 +45,14 @@ int check(const std::string& path) {
              static_cast<double>(m.bonds.num_bonds()) / static_cast<double>(m.nodes.size()),
              m.precrack_bonds, dk.cracks.size());
   fmt::print("wave speed      {:.6g} m/s\n", mat.wave_speed);
-  fmt::print("dt_crit         {:.6e} s (Silling-Askari, node {})\n", ts.dt_crit, ts.limiting_node);
-  fmt::print("dt              {:.6e} s{}\n", ts.dt, dk.time_step ? " (deck)" : " (safety x dt_crit)");
-  fmt::print("steps           {} (end time {:.6e} s)\n", ts.steps, ts.steps * ts.dt);
+  if (is_static) {
+    fmt::print("solver          static (linearized bond-based, {} bond pairing)\n",
+               dk.dual_horizon ? "dual-horizon" : "source-horizon");
+  } else {
+    fmt::print("dt_crit         {:.6e} s (Silling-Askari, node {})\n", ts.dt_crit, ts.limiting_node);
+    fmt::print("dt              {:.6e} s{}\n", ts.dt, dk.time_step ? " (deck)" : " (safety x dt_crit)");
+    fmt::print("steps           {} (end time {:.6e} s)\n", ts.steps, ts.steps * ts.dt);
+  }
   for (const BodyLoad& l : m.loads)
     fmt::print("load            {}: {} nodes, body force density [{:.4g}, {:.4g}, {:.4g}] N/m^3\n",
                l.name, l.nodes.size(), l.density[0], l.density[1], l.density[2]);
@@ -76,6 +86,13 @@ int main(int argc, char** argv) {
   run->add_flag("--quiet", quiet, "no progress output");
   CLI::App* chk = app.add_subcommand("check", "validate a deck and print every resolved parameter");
   chk->add_option("deck", deck, "YAML input deck")->required();
+  std::string study_name;
+  CLI::App* study = app.add_subcommand("study", "run a built-in study of the seeds and print its "
+                                                "tables beside the published numbers");
+  study->add_option("name", study_name, "study name")
+      ->required()
+      ->check(CLI::IsMember({"bobaru-1d-static"}));
+  study->add_option("--out", out, "directory for the study's CSV files");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -84,10 +101,21 @@ int main(int argc, char** argv) {
   if (threads > 0) omp_set_num_threads(threads);
   try {
     if (chk->parsed()) return check(deck);
+    if (study->parsed()) {
+      if (!out.empty()) std::filesystem::create_directories(out);
+      return run_bobaru_1d_study(out);
+    }
     RunOptions ro;
     if (!out.empty()) ro.out_dir = out;
     ro.quiet = quiet;
     const Deck dk = load_deck(deck);
+    if (dk.solver == Deck::SolverType::Static) {
+      const RunResult r = run_static(dk, ro);
+      fmt::print("done: static solve, max |u| = {:.6e} m; outputs in {}\n",
+                 r.summary["max_abs_displacement_m"].get<double>(),
+                 ro.out_dir ? *ro.out_dir : dk.output.directory);
+      return 0;
+    }
     RunResult r = run_simulation(dk, ro);
     const auto& s = r.summary;
     if (r.diverged) {

@@ -1,4 +1,5 @@
 #include "app/simulation.hpp"
+#include "app/snapshot_fields.hpp"
 
 #include "core/process_memory.hpp"
 
@@ -44,33 +45,6 @@ TimeStepChoice choose_time_step(const Deck& dk, const Model& m) {
   return c;
 }
 
-namespace {
-
-std::vector<PointField> snapshot_fields(const Model& m, const std::vector<double>& W) {
-  const NodeSet& ns = m.nodes;
-  const std::size_t n = ns.size();
-  std::vector<PointField> f;
-  auto vec3 = [&](const std::string& name, const std::array<std::vector<double>, 3>& a) {
-    PointField p{name, 3, std::vector<double>(n * 3, 0.0)};
-    for (std::size_t i = 0; i < n; ++i)
-      for (int d = 0; d < ns.dim; ++d) p.data[i * 3 + d] = a[d][i];
-    f.push_back(std::move(p));
-  };
-  vec3("displacement", ns.u);
-  vec3("velocity", ns.v);
-  PointField dmg{"damage", 1, std::vector<double>(n)};
-  for (std::size_t i = 0; i < n; ++i) dmg.data[i] = ns.damage(i);
-  f.push_back(std::move(dmg));
-  f.push_back({"energy_density", 1, W});
-  f.push_back({"horizon", 1, ns.horizon});
-  PointField lvl{"refinement_level", 1, std::vector<double>(n)};
-  for (std::size_t i = 0; i < n; ++i) lvl.data[i] = ns.level[i];
-  f.push_back(std::move(lvl));
-  f.push_back({"volume", 1, ns.volume});
-  return f;
-}
-
-}  // namespace
 
 RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
   using clock = std::chrono::steady_clock;

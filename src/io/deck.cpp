@@ -289,27 +289,40 @@ Deck parse_deck(const std::string& text, const std::string& name) {
     for (Section r : dmg->list("no_fail")) dk.no_fail.push_back(parse_region(r, dk.dim));
     dmg->finish();
   }
-  if (dk.damage && !dk.G0 && !dk.s0)
-    top.fail("material", "damage is enabled: give material.fracture_energy (G0) or "
-                         "material.critical_stretch, or set damage.enabled: false");
   // --- solver
   {
     Section s = top.section("solver");
-    s.choice("type", {"explicit"}, "explicit");
-    if (s.has("time_step")) dk.time_step = s.number("time_step", std::nullopt, positive());
-    dk.safety = s.number("safety_factor", 0.8, [](double v) {
-      return (v > 0 && v <= 1) ? std::string() : std::string("must be in (0, 1]");
-    });
-    dk.allow_unstable_time_step = s.boolean("allow_unstable_time_step", false);
-    if (s.has("end_time") == s.has("steps"))
-      s.fail("", "give exactly one of end_time (s) or steps");
-    if (s.has("end_time")) dk.end_time = s.number("end_time", std::nullopt, positive());
-    if (s.has("steps"))
-      dk.steps = s.integer("steps", std::nullopt, [](long v) {
-        return v >= 1 ? std::string() : std::string("must be >= 1");
+    const std::string type = s.choice("type", {"explicit", "static"}, "explicit");
+    dk.solver = type == "static" ? Deck::SolverType::Static : Deck::SolverType::Explicit;
+    if (dk.solver == Deck::SolverType::Static) {
+      // Linearized equilibrium: no time stepping keys, no bond breaking.
+      for (const char* k : {"time_step", "end_time", "steps", "safety_factor",
+                            "allow_unstable_time_step"})
+        if (s.has(k))
+          s.fail(k, "a static solve has no time stepping; remove this key or use type: explicit");
+      dk.dual_horizon =
+          s.choice("bond_pairing", {"source_horizon", "dual_horizon"}, "source_horizon") ==
+          "dual_horizon";
+      dk.damage = false;
+    } else {
+      if (s.has("time_step")) dk.time_step = s.number("time_step", std::nullopt, positive());
+      dk.safety = s.number("safety_factor", 0.8, [](double v) {
+        return (v > 0 && v <= 1) ? std::string() : std::string("must be in (0, 1]");
       });
+      dk.allow_unstable_time_step = s.boolean("allow_unstable_time_step", false);
+      if (s.has("end_time") == s.has("steps"))
+        s.fail("", "give exactly one of end_time (s) or steps");
+      if (s.has("end_time")) dk.end_time = s.number("end_time", std::nullopt, positive());
+      if (s.has("steps"))
+        dk.steps = s.integer("steps", std::nullopt, [](long v) {
+          return v >= 1 ? std::string() : std::string("must be >= 1");
+        });
+    }
     s.finish();
   }
+  if (dk.damage && !dk.G0 && !dk.s0)
+    top.fail("material", "damage is enabled: give material.fracture_energy (G0) or "
+                         "material.critical_stretch, or set damage.enabled: false");
   // --- output
   if (auto o = top.optional_section("output")) {
     OutputSpec& out = dk.output;

@@ -72,6 +72,8 @@ struct Deck {
   bool damage = true;
   std::vector<Shape> no_fail;
   // solver
+  enum class SolverType { Explicit, Static } solver = SolverType::Explicit;
+  bool dual_horizon = false;  // static solver: bonds act on both ends (dual-horizon form)
   std::optional<double> time_step;
   double safety = 0.8;
   bool allow_unstable_time_step = false;

@@ -1,5 +1,6 @@
 #include "model/build_model.hpp"
 
+#include <algorithm>
 #include <chrono>
 
 #include <cmath>
@@ -88,10 +89,30 @@ Model build_model(const Deck& dk) {
     if (bl.nodes.empty())
       throw DeckError(dk.file, 0, 0, ls.name + ".region", "the region selects no nodes");
     // A traction t spread over a layer of depth h acts as the body-force density t / h
-    // (thesis ch. 6 loads one row of nodes: h = grid spacing).
-    const double scale = ls.kind == LoadSpec::Kind::Traction
-                             ? 1.0 / (ls.layer > 0 ? ls.layer : dk.grid.spacing)
-                             : 1.0;
+    // (thesis ch. 6 loads one row of nodes). Without an explicit layer, h = (volume of the
+    // selected nodes) / (area of the region's largest face), so that the total force is t times
+    // that area whatever the node volumes (half cells on node-on-edge grids included).
+    double scale = 1.0;
+    if (ls.kind == LoadSpec::Kind::Traction) {
+      double h = ls.layer;
+      if (!(h > 0)) {
+        if (ls.region.kind != Shape::Kind::Box)
+          throw DeckError(dk.file, 0, 0, ls.name + ".layer",
+                          "a traction on a non-box region needs an explicit layer depth (m)");
+        std::vector<double> ext;
+        for (int d = 0; d < dk.dim; ++d)
+          ext.push_back(std::max(0.0, std::min(ls.region.box.hi[d], dk.grid.body.hi[d]) -
+                                          std::max(ls.region.box.lo[d], dk.grid.body.lo[d])));
+        std::sort(ext.begin(), ext.end());
+        double area = dk.dim == 1 ? dk.thickness : dk.dim == 2 ? ext[1] * dk.thickness : ext[1] * ext[2];
+        if (dk.dim == 2 && ext[1] <= 0) area = dk.grid.spacing * dk.thickness;  // a single node
+        if (dk.dim == 3 && ext[1] * ext[2] <= 0) area = dk.grid.spacing * dk.grid.spacing;
+        double vol = 0;
+        for (std::uint32_t i : bl.nodes) vol += ns.volume[i];
+        h = vol / area;
+      }
+      scale = 1.0 / h;
+    }
     for (int d = 0; d < 3; ++d) bl.density[d] = ls.value[d] * scale;
     bl.amplitude = ls.time;
     m.loads.push_back(std::move(bl));
