@@ -1,5 +1,6 @@
 #include "app/simulation.hpp"
 #include "app/snapshot_fields.hpp"
+#include "adapt/adaptor.hpp"
 
 #include "core/process_memory.hpp"
 
@@ -24,6 +25,14 @@
 #include "solver/velocity_verlet.hpp"
 
 namespace periadapt {
+
+namespace {
+std::size_t active_count(const NodeSet& ns) {
+  std::size_t n = 0;
+  for (auto f : ns.flags) n += (f & kActive) != 0;
+  return n;
+}
+}  // namespace
 
 TimeStepChoice choose_time_step(const Deck& dk, const Model& m) {
   const StableStep s = stable_time_step(m);
@@ -139,7 +148,7 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
             "{},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{},{},{:.6e},{:.6e},{:.6e},{:.6e},{},{},{:.4f}\n",
             step, t, K, U, vv.external_work(), K + U - vv.external_work(), vv.broken_bonds(),
             damaged_nodes, last_tip[0], last_tip[1], last_tip[2], tracker.current_speed(),
-            ns.size(), m.bonds.num_bonds(),
+            active_count(ns), m.bonds.num_bonds(),
             std::chrono::duration<double>(clock::now() - t_start).count());
     }
     if (do_vtu) vtu->write(t, ns, snapshot_fields(m, W));
@@ -148,10 +157,57 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
       for (std::size_t i = 0; i < ns.size(); ++i) dmg[i] = ns.damage(i);
       PngOptions po;
       po.width = dk.output.png_width;
-      po.title = fmt::format("damage at t = {:.2f} us   ({} nodes)", t * 1e6, ns.size());
+      po.title = fmt::format("damage at t = {:.2f} us   ({} nodes)", t * 1e6, active_count(ns));
       const std::string p = fmt::format("{}/damage_{:08.3f}us.png", dir, t * 1e6);
       write_field_png(p, ns, dmg, po);
       pngs.push_back(p);
+    }
+  };
+
+  if (dk.adapt.enabled && !dk.allow_unstable_time_step) {
+    // The stable step scales with the horizon (sum_j C_ij V_j ~ c delta^(dim-1) ~ 1/delta^2):
+    // check the finest level now rather than when the first refinement happens.
+    double ratio = 1.0;
+    for (int l = 1; l <= dk.adapt.max_level; ++l)
+      ratio = std::min(ratio, level_horizon(m, dk.adapt, l) / m.horizon);
+    if (ts.dt > ts.dt_crit * ratio * (1 + 1e-9))
+      throw DeckError(dk.file, 0, 0, "solver.time_step",
+                      fmt::format("{:.4g} s exceeds the stable step expected at refinement level "
+                                  "{} (about {:.4g} s = {:.4g} x the level-0 bound); lower it, "
+                                  "or lower adapt.max_level",
+                                  ts.dt, dk.adapt.max_level, ts.dt_crit * ratio, ratio));
+  }
+  std::unique_ptr<Adaptor> adaptor;
+  std::ofstream refinement_log;
+  std::size_t events_logged = 0;
+  double adapt_seconds = 0;
+  if (dk.adapt.enabled) {
+    adaptor = std::make_unique<Adaptor>(m, vv, dk.adapt);
+    if (opt.write_files) {
+      refinement_log.open(dir + "/refinement.csv");
+      refinement_log << "step,time_s,trigger,identified,parents,children,active_nodes,bonds,"
+                        "momentum_change_rel,kinetic_before_J,kinetic_after_J,dt_stable_s,"
+                        "event_wall_s\n";
+    }
+  }
+  auto log_events = [&]() {
+    if (!adaptor) return;
+    const auto& evs = adaptor->events();
+    for (; events_logged < evs.size(); ++events_logged) {
+      const RefinementEvent& e = evs[events_logged];
+      adapt_seconds += e.stats.seconds;
+      double dp = 0, p = 0;
+      for (int d = 0; d < 3; ++d) {
+        dp += std::pow(e.stats.momentum_after[d] - e.stats.momentum_before[d], 2);
+        p += std::pow(e.stats.momentum_before[d], 2);
+      }
+      const double rel = p > 0 ? std::sqrt(dp / p) : std::sqrt(dp);
+      if (refinement_log)
+        refinement_log << fmt::format("{},{:.9e},{},{},{},{},{},{},{:.3e},{:.9e},{:.9e},{:.6e},{:.4f}\n",
+                                      e.step, e.time, e.trigger, e.identified, e.stats.parents,
+                                      e.stats.children, e.active_nodes, e.bonds, rel,
+                                      e.stats.kinetic_before, e.stats.kinetic_after, e.dt_stable,
+                                      e.stats.seconds);
     }
   };
 
@@ -159,8 +215,15 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
   Progress bar(ts.steps, opt.quiet);
   for (long s = 1; s <= ts.steps; ++s) {
     const auto t0 = clock::now();
-    const bool ok = vv.step();
+    bool ok = false;
+    try {
+      ok = adaptor ? adaptor->step() : vv.step();
+    } catch (const UnstableAfterRefinement& e) {
+      log_events();
+      throw DeckError(dk.file, 0, 0, "solver.time_step", e.what());
+    }
     solver_seconds += std::chrono::duration<double>(clock::now() - t0).count();
+    log_events();
     if (!ok) {
       res.diverged = true;
       break;
@@ -177,7 +240,7 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
   j["deck"] = dk.file;
   j["status"] = res.diverged ? "diverged" : "completed";
   j["dimension"] = ns.dim;
-  j["nodes"] = {{"initial", nodes0}, {"final", ns.size()}};
+  j["nodes"] = {{"initial", nodes0}, {"final", active_count(ns)}, {"slots", ns.size()}};
   j["bonds"] = m.bonds.num_bonds();
   j["precrack_bonds"] = m.precrack_bonds;
   j["broken_bonds"] = vv.broken_bonds();
@@ -210,6 +273,19 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
                    {"micromodulus", to_string(m.material.shape)},
                    {"wave_speed_m_s", m.material.wave_speed}};
   j["grid"] = {{"spacing", m.grid_spacing}, {"horizon", m.horizon}};
+  if (adaptor) {
+    std::size_t parents = 0;
+    for (const auto& e : adaptor->events()) parents += e.stats.parents;
+    int top = 0;
+    for (std::size_t i = 0; i < ns.size(); ++i)
+      if (ns.flags[i] & kActive) top = std::max(top, static_cast<int>(ns.level[i]));
+    j["adapt"] = {{"events", adaptor->events().size()},
+                  {"parents_refined", parents},
+                  {"nodes_added", adaptor->nodes_added()},
+                  {"finest_level", top},
+                  {"refinement_wall_s", adapt_seconds}};
+    j["nodes"]["active"] = active_count(ns);
+  }
   j["energy"] = {{"kinetic_J", K}, {"strain_J", U}, {"external_work_J", vv.external_work()}};
   if (res.diverged) {
     const DivergenceError& e = vv.divergence();

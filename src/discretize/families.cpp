@@ -84,6 +84,15 @@ BondFamilies build_families(const NodeSet& nodes, const QuadratureSpec& quad) {
   return fam;
 }
 
+void mark_unbreakable_bonds(const NodeSet& ns, BondFamilies& bf) {
+  const std::size_t n = ns.size();
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k)
+      if ((ns.flags[i] | ns.flags[bf.neighbor[k]]) & kNoFail)
+        bf.inv_length[k] = -std::abs(bf.inv_length[k]);
+}
+
 void update_damage_weights(NodeSet& nodes, const BondFamilies& bonds) {
   const std::size_t n = nodes.size();
 #pragma omp parallel for schedule(static)

@@ -14,6 +14,9 @@ struct QuadratureSpec {
 
 BondFamilies build_families(const NodeSet& nodes, const QuadratureSpec& quadrature);
 
+// Bonds with an end on a no-fail node can never break (flag carried by the bond's sign).
+void mark_unbreakable_bonds(const NodeSet& nodes, BondFamilies& bonds);
+
 // Recomputes the damage denominators (sum of beta*V_j over each family) and numerators.
 void update_damage_weights(NodeSet& nodes, const BondFamilies& bonds);
 

@@ -323,6 +323,50 @@ Deck parse_deck(const std::string& text, const std::string& name) {
   if (dk.damage && !dk.G0 && !dk.s0)
     top.fail("material", "damage is enabled: give material.fracture_energy (G0) or "
                          "material.critical_stretch, or set damage.enabled: false");
+  // --- adaptive grid refinement and scaling
+  if (auto a = top.optional_section("adapt")) {
+    AdaptSpec& ad = dk.adapt;
+    ad.enabled = true;
+    if (dk.solver == Deck::SolverType::Static)
+      a->fail("", "adaptive refinement works with the explicit solver only");
+    ad.max_level = static_cast<int>(a->integer("max_level", 1, [](long v) {
+      return (v >= 1 && v <= 6) ? std::string() : std::string("must be in 1 ... 6");
+    }));
+    const std::string method = a->choice("method", {"B", "A"}, "B");
+    if (method == "A")
+      a->fail("method", "node generation method A is not available yet; use B (children at "
+                        "sub-cell centres, parent deactivated)");
+    const std::string sc = a->choice("scaling", {"delta", "m", "delta_m"}, "delta");
+    ad.scaling = sc == "delta" ? HorizonScaling::Delta
+                 : sc == "m"   ? HorizonScaling::M
+                               : HorizonScaling::DeltaM;
+    if (ad.scaling == HorizonScaling::DeltaM) {
+      ad.m_per_level = a->numbers("m_per_level", static_cast<std::size_t>(ad.max_level + 1), 64);
+      for (double v : ad.m_per_level)
+        if (!(v >= 1.0)) a->fail("m_per_level", "every m must be >= 1");
+      if (std::abs(ad.m_per_level[0] - dk.horizon_factor) > 1e-9 * dk.horizon_factor)
+        a->fail("m_per_level", "the first entry is level 0 and must equal the grid's m = " +
+                                   std::to_string(dk.horizon_factor));
+    } else if (a->has("m_per_level")) {
+      a->fail("m_per_level", "only used with scaling: delta_m");
+    }
+    ad.interface_horizon = a->boolean("interface_horizon", false);
+    ad.start_time = a->number("start_time", 0.0, non_negative());
+    ad.check_every = static_cast<int>(a->integer("check_every", 1, [](long v) {
+      return v >= 1 ? std::string() : std::string("must be >= 1");
+    }));
+    if (a->has("energy_trigger"))
+      ad.energy_fraction = a->number("energy_trigger", std::nullopt, [](double v) {
+        return (v > 0 && v <= 1) ? std::string()
+                                 : std::string("a fraction of the maximum energy density in (0, 1]");
+      });
+    ad.damage_trigger = a->boolean("damage_trigger", false);
+    if (!ad.energy_fraction && !ad.damage_trigger)
+      a->fail("", "give at least one trigger: energy_trigger (fraction of W_max) or "
+                  "damage_trigger: true");
+    if (a->has("region")) ad.region = parse_region(a->section("region"), dk.dim);
+    a->finish();
+  }
   // --- output
   if (auto o = top.optional_section("output")) {
     OutputSpec& out = dk.output;

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/geometry.hpp"
+#include "adapt/adapt_spec.hpp"
 #include "discretize/grid.hpp"
 #include "discretize/partial_volume.hpp"
 #include "discretize/precrack.hpp"
@@ -79,6 +80,7 @@ struct Deck {
   bool allow_unstable_time_step = false;
   double end_time = 0.0;
   std::optional<long> steps;
+  AdaptSpec adapt;
   OutputSpec output;
 };
 

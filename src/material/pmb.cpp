@@ -18,7 +18,8 @@ inline double g(double t) {
 }
 
 template <int D, InfluenceShape S>
-std::size_t forces_kernel(NodeSet& ns, BondFamilies& bf, bool allow_breaking) {
+std::size_t forces_kernel(NodeSet& ns, BondFamilies& bf, bool allow_breaking,
+                          std::vector<std::uint64_t>* log) {
   const std::size_t n = ns.size();
   const double* yp = ns.cur.data();
   const std::uint8_t* flags = ns.flags.data();
@@ -89,6 +90,10 @@ std::size_t forces_kernel(NodeSet& ns, BondFamilies& bf, bool allow_breaking) {
           beta[k] = -b;
           bw += bv;
           ++nb;
+          if (log) {
+#pragma omp critical(pmb_broken_log)
+            log->push_back(k);
+          }
           continue;
         }
         double gw = bv;
@@ -172,8 +177,9 @@ auto dispatch(int dim, InfluenceShape s, Args&&... args) {
 
 template <int D, InfluenceShape S>
 struct ForcesOp {
-  static std::size_t run(NodeSet& ns, BondFamilies& bf, bool brk) {
-    return forces_kernel<D, S>(ns, bf, brk);
+  static std::size_t run(NodeSet& ns, BondFamilies& bf, bool brk,
+                         std::vector<std::uint64_t>* log) {
+    return forces_kernel<D, S>(ns, bf, brk, log);
   }
 };
 template <int D, InfluenceShape S>
@@ -194,9 +200,10 @@ struct StiffnessOp {
 }  // namespace
 
 PmbStepStats pmb_forces(NodeSet& nodes, BondFamilies& bonds, InfluenceShape shape,
-                        bool allow_breaking) {
+                        bool allow_breaking, std::vector<std::uint64_t>* broken_log) {
   PmbStepStats st;
-  st.newly_broken = dispatch<ForcesOp>(nodes.dim, shape, nodes, bonds, allow_breaking);
+  st.newly_broken =
+      dispatch<ForcesOp>(nodes.dim, shape, nodes, bonds, allow_breaking, broken_log);
   return st;
 }
 

@@ -2,6 +2,7 @@
 // Bond-based prototype microelastic brittle (PMB) model: force densities, bond breaking and
 // strain-energy density. One kernel per dimension and influence shape, selected once per call.
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "core/bond_families.hpp"
@@ -17,8 +18,10 @@ struct PmbStepStats {
 // Internal force density f_i = sum_j c_i g(xi/delta_i) s beta_j V_j e_ij for every active node,
 // from the current positions y. When `allow_breaking`, bonds whose stretch exceeds the source
 // node's critical stretch break irreversibly (unless either end is flagged no-fail).
+// When `broken_log` is given, the indices of the bonds broken by this call are appended to it
+// (in no particular order) so that a step can be undone.
 PmbStepStats pmb_forces(NodeSet& nodes, BondFamilies& bonds, InfluenceShape shape,
-                        bool allow_breaking);
+                        bool allow_breaking, std::vector<std::uint64_t>* broken_log = nullptr);
 
 // Strain-energy density W_i = 1/4 sum_j c_i g s^2 xi beta_j V_j over intact bonds (thesis 2.14).
 void pmb_energy_density(const NodeSet& nodes, const BondFamilies& bonds, InfluenceShape shape,

@@ -70,17 +70,14 @@ Model build_model(const Deck& dk) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   m.precrack_bonds = apply_precracks(ns, m.bonds, dk.cracks);
   update_damage_weights(ns, m.bonds);
+  m.quadrature = qs;
+  m.cracks = dk.cracks;
+  m.lattice_rotation = qs.lattice_rotation;
 
   const double tol = 1e-9 * dk.grid.spacing;
   for (std::size_t r = 0; r < dk.no_fail.size(); ++r)
     for (std::uint32_t i : select(ns, dk.no_fail[r], tol)) ns.flags[i] |= kNoFail;
-  // Bonds with an end in a no-fail region can never break (flag carried by the bond).
-  if (!dk.no_fail.empty()) {
-    for (std::size_t i = 0; i < ns.size(); ++i)
-      for (std::uint64_t k = m.bonds.begin(i); k < m.bonds.end(i); ++k)
-        if ((ns.flags[i] | ns.flags[m.bonds.neighbor[k]]) & kNoFail)
-          m.bonds.inv_length[k] = -std::abs(m.bonds.inv_length[k]);
-  }
+  mark_unbreakable_bonds(ns, m.bonds);
 
   for (const LoadSpec& ls : dk.loads) {
     BodyLoad bl;

@@ -10,6 +10,8 @@
 #include "core/bond_families.hpp"
 #include "core/expression.hpp"
 #include "core/node_set.hpp"
+#include "discretize/families.hpp"
+#include "discretize/precrack.hpp"
 #include "material/micromodulus.hpp"
 #include "model/time_function.hpp"
 
@@ -52,6 +54,10 @@ struct Model {
   double grid_spacing = 0;
   double horizon = 0;
   double family_build_seconds = 0;  // wall time of the neighbor search and CSR build
+  // What rebuilding families after refinement needs again.
+  QuadratureSpec quadrature;
+  std::vector<PreCrack> cracks;
+  double lattice_rotation = 0.0;  // radians (2D grids): orientation of children offsets
 };
 
 }  // namespace periadapt

@@ -60,7 +60,8 @@ void VelocityVerlet::impose_motions(double t, bool velocities_only) {
 
 void VelocityVerlet::compute_accelerations() {
   NodeSet& ns = m_.nodes;
-  const PmbStepStats st = pmb_forces(ns, m_.bonds, m_.material.shape, m_.damage_enabled);
+  const PmbStepStats st = pmb_forces(ns, m_.bonds, m_.material.shape, m_.damage_enabled,
+                                     undo_enabled_ ? &saved_.broken_log : nullptr);
   broken_total_ += st.newly_broken;
   bond_evals_ += static_cast<double>(m_.bonds.num_bonds());
   const std::size_t n = ns.size();
@@ -105,11 +106,57 @@ void VelocityVerlet::initialize() {
   last_power_ = external_power();
 }
 
+void VelocityVerlet::refresh() {
+  m_.nodes.sync_all_current();
+  apply_loads(time_);
+  compute_accelerations();
+  last_power_ = external_power();
+}
+
+void VelocityVerlet::undo_last_step() {
+  NodeSet& ns = m_.nodes;
+  const std::size_t n = saved_.broken_weight.size();
+  for (int d = 0; d < 3; ++d) {
+    std::copy(saved_.u[d].begin(), saved_.u[d].end(), ns.u[d].begin());
+    std::copy(saved_.v[d].begin(), saved_.v[d].end(), ns.v[d].begin());
+    std::copy(saved_.a[d].begin(), saved_.a[d].end(), ns.a[d].begin());
+  }
+  std::copy(saved_.broken_weight.begin(), saved_.broken_weight.end(), ns.broken_weight.begin());
+  for (std::uint64_t k : saved_.broken_log) m_.bonds.beta[k] = std::abs(m_.bonds.beta[k]);
+  saved_.broken_log.clear();
+  for (std::size_t i = 0; i < n; ++i) ns.sync_current(i);
+  v_prev_fixed_ = saved_.v_prev_fixed;
+  reaction_ = saved_.reaction;
+  time_ = saved_.time;
+  step_ = saved_.step;
+  external_work_ = saved_.external_work;
+  last_power_ = saved_.last_power;
+  broken_total_ = saved_.broken_total;
+  bond_evals_ = saved_.bond_evals;
+}
+
 bool VelocityVerlet::step() {
   NodeSet& ns = m_.nodes;
   const std::size_t n = ns.size();
   const int dim = ns.dim;
   const double dt = dt_, hdt = 0.5 * dt_;
+  if (undo_enabled_) {
+    for (int d = 0; d < 3; ++d) {
+      saved_.u[d] = ns.u[d];
+      saved_.v[d] = ns.v[d];
+      saved_.a[d] = ns.a[d];
+    }
+    saved_.broken_weight = ns.broken_weight;
+    saved_.v_prev_fixed = v_prev_fixed_;
+    saved_.reaction = reaction_;
+    saved_.time = time_;
+    saved_.step = step_;
+    saved_.external_work = external_work_;
+    saved_.last_power = last_power_;
+    saved_.broken_total = broken_total_;
+    saved_.bond_evals = bond_evals_;
+    saved_.broken_log.clear();
+  }
   for (std::size_t q = 0; q < fixed_dofs_.size(); ++q)
     v_prev_fixed_[q] = ns.v[fixed_dofs_[q] % 3][fixed_dofs_[q] / 3];
 

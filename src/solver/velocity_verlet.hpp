@@ -1,6 +1,8 @@
 #pragma once
 // Explicit Velocity-Verlet integration (thesis Eq. 3.2) with body loads and prescribed motions.
+#include <array>
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -34,6 +36,14 @@ class VelocityVerlet {
   // Number of bond evaluations done so far (for throughput reports).
   double bond_evaluations() const { return bond_evals_; }
 
+  // Undo support (refinement triggered by damage redoes the step on the refined grid). When on,
+  // every step keeps what undo_last_step() needs: the previous kinematic state and the bonds the
+  // step broke.
+  void set_undo(bool on) { undo_enabled_ = on; }
+  void undo_last_step();
+  // Recomputes loads and accelerations at the current state; call after the grid changed.
+  void refresh();
+
  private:
   void apply_loads(double t);
   void compute_accelerations();
@@ -50,6 +60,15 @@ class VelocityVerlet {
   double bond_evals_ = 0.0;
   double runaway_limit_ = 0.0;
   DivergenceError divergence_{};
+  bool undo_enabled_ = false;
+  struct Saved {
+    std::array<std::vector<double>, 3> u, v, a;
+    std::vector<double> broken_weight, v_prev_fixed, reaction;
+    double time = 0, external_work = 0, last_power = 0, bond_evals = 0;
+    long step = 0;
+    std::size_t broken_total = 0;
+    std::vector<std::uint64_t> broken_log;
+  } saved_;
   // Constrained degrees of freedom, flattened (node*3 + component), with reaction densities.
   std::vector<std::size_t> fixed_dofs_;
   std::vector<double> reaction_;

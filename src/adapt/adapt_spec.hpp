@@ -1,0 +1,30 @@
+#pragma once
+// What adaptive grid refinement and scaling (AGRS) does during a run (deck section `adapt`).
+#include <optional>
+#include <vector>
+
+#include "core/geometry.hpp"
+
+namespace periadapt {
+
+// How the horizon follows the spacing from one level to the next (thesis 2.3, F-10).
+enum class HorizonScaling {
+  Delta,   // delta-convergence: delta halves with the spacing, m fixed
+  M,       // m-convergence: delta fixed, m doubles
+  DeltaM,  // delta m-convergence: m per level from `m_per_level`, delta = m_l dX_l
+};
+
+struct AdaptSpec {
+  bool enabled = false;
+  int max_level = 1;
+  HorizonScaling scaling = HorizonScaling::Delta;
+  std::vector<double> m_per_level;  // DeltaM: m of levels 0, 1, ... (at least max_level + 1)
+  bool interface_horizon = false;   // thesis 3.2.3: interface nodes get m x distance to coarse
+  double start_time = 0.0;          // t_st: no refinement before
+  int check_every = 1;              // steps between energy-trigger checks
+  std::optional<double> energy_fraction;  // energy trigger W >= alpha W_max (None: off)
+  bool damage_trigger = false;            // damage trigger: delta phi > 0, step redone
+  std::optional<Shape> region;            // refinement allowed only inside
+};
+
+}  // namespace periadapt

@@ -1,0 +1,50 @@
+#pragma once
+// Drives AGRS during an explicit run: after each step it asks the triggers where to refine,
+// widens the set by the visibility criterion, refines, and hands the solver a consistent state
+// again. With the damage trigger, a step that damaged a refinable node is undone, the grid is
+// refined there and the step is redone (thesis Fig. 3.4), so bonds break on the finest level.
+#include <string>
+#include <vector>
+
+#include "adapt/adapt_spec.hpp"
+#include "adapt/refine.hpp"
+#include "model/model.hpp"
+#include "solver/velocity_verlet.hpp"
+
+namespace periadapt {
+
+struct RefinementEvent {
+  long step = 0;
+  double time = 0;
+  std::string trigger;           // "energy" or "damage"
+  std::size_t identified = 0;    // nodes flagged by the trigger
+  RefineStats stats;             // parents refined, children created, momentum, kinetic energy
+  std::size_t active_nodes = 0;  // after the event
+  std::size_t bonds = 0;
+  double dt_stable = 0;          // stable step of the refined model
+};
+
+// Raised when refinement makes the run's time step unstable.
+class UnstableAfterRefinement : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class Adaptor {
+ public:
+  Adaptor(Model& m, VelocityVerlet& vv, const AdaptSpec& spec);
+  // One step of the solver with refinement as the triggers ask; false when the solver diverged.
+  bool step();
+  const std::vector<RefinementEvent>& events() const { return events_; }
+  std::size_t nodes_added() const;
+
+ private:
+  void refine(const std::vector<std::uint32_t>& ids, const char* trigger);
+  Model& m_;
+  VelocityVerlet& vv_;
+  AdaptSpec spec_;
+  std::vector<RefinementEvent> events_;
+  std::vector<double> W_, damage_before_;
+};
+
+}  // namespace periadapt

@@ -1,0 +1,269 @@
+#include "adapt/refine.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "core/cell_grid.hpp"
+#include "core/geometry.hpp"
+#include "material/micromodulus.hpp"
+
+namespace periadapt {
+
+namespace {
+
+std::uint64_t pair_key(std::uint32_t a, std::uint32_t b) {
+  if (a > b) std::swap(a, b);
+  return (static_cast<std::uint64_t>(a) << 32) | b;
+}
+
+// A crack facet left by a broken bond: a short segment through the bond's midpoint,
+// perpendicular to it (2D).
+struct Facet {
+  Vec3 a, b;
+};
+
+void momentum_and_kinetic(const NodeSet& ns, double p[3], double& K) {
+  p[0] = p[1] = p[2] = 0;
+  K = 0;
+  for (std::size_t i = 0; i < ns.size(); ++i) {
+    if (!(ns.flags[i] & kActive)) continue;
+    const double mass = ns.density[i] * ns.volume[i];
+    for (int d = 0; d < ns.dim; ++d) {
+      p[d] += mass * ns.v[d][i];
+      K += 0.5 * mass * ns.v[d][i] * ns.v[d][i];
+    }
+  }
+}
+
+// Least-squares gradient of field F (dim components) over the parent's visible family, solved by
+// the normal equations; zero when the family is degenerate (fewer than dim independent bonds).
+void fit_gradient(const NodeSet& ns, const BondFamilies& bf, std::uint32_t p,
+                  const std::array<std::vector<double>, 3>& F, double G[3][3]) {
+  const int D = ns.dim;
+  double M[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}, R[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+  for (std::uint64_t k = bf.begin(p); k < bf.end(p); ++k) {
+    if (!BondFamilies::intact(bf.beta[k])) continue;
+    const std::uint32_t j = bf.neighbor[k];
+    if (!(ns.flags[j] & kActive)) continue;
+    double dx[3];
+    for (int e = 0; e < D; ++e) dx[e] = ns.x[e][j] - ns.x[e][p];
+    for (int a = 0; a < D; ++a) {
+      for (int b = 0; b < D; ++b) M[a][b] += dx[a] * dx[b];
+      for (int c = 0; c < D; ++c) R[c][a] += dx[a] * (F[c][j] - F[c][p]);
+    }
+  }
+  for (int a = 0; a < 3; ++a) G[a][0] = G[a][1] = G[a][2] = 0;
+  // Invert the D x D moment matrix (Cramer); degenerate -> no gradient (parent value only).
+  double inv[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+  double scale = 0;
+  for (int a = 0; a < D; ++a) scale = std::max(scale, M[a][a]);
+  if (!(scale > 0)) return;
+  if (D == 1) {
+    inv[0][0] = 1.0 / M[0][0];
+  } else if (D == 2) {
+    const double det = M[0][0] * M[1][1] - M[0][1] * M[1][0];
+    if (std::abs(det) < 1e-10 * scale * scale) return;
+    inv[0][0] = M[1][1] / det, inv[1][1] = M[0][0] / det;
+    inv[0][1] = -M[0][1] / det, inv[1][0] = -M[1][0] / det;
+  } else {
+    const double det = M[0][0] * (M[1][1] * M[2][2] - M[1][2] * M[2][1]) -
+                       M[0][1] * (M[1][0] * M[2][2] - M[1][2] * M[2][0]) +
+                       M[0][2] * (M[1][0] * M[2][1] - M[1][1] * M[2][0]);
+    if (std::abs(det) < 1e-10 * scale * scale * scale) return;
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) {
+        const int a1 = (b + 1) % 3, a2 = (b + 2) % 3, b1 = (a + 1) % 3, b2 = (a + 2) % 3;
+        inv[a][b] = (M[a1][b1] * M[a2][b2] - M[a1][b2] * M[a2][b1]) / det;
+      }
+  }
+  for (int c = 0; c < D; ++c)
+    for (int a = 0; a < D; ++a)
+      for (int b = 0; b < D; ++b) G[c][a] += R[c][b] * inv[b][a];
+}
+
+}  // namespace
+
+double level_horizon(const Model& m, const AdaptSpec& spec, int level) {
+  const double h = m.grid_spacing / std::ldexp(1.0, level);
+  switch (spec.scaling) {
+    case HorizonScaling::Delta: return m.horizon / std::ldexp(1.0, level);
+    case HorizonScaling::M: return m.horizon;
+    case HorizonScaling::DeltaM: return spec.m_per_level.at(static_cast<std::size_t>(level)) * h;
+  }
+  return m.horizon;
+}
+
+void scale_material_to_horizon(Model& m, std::size_t i) {
+  const MaterialLaw& mat = m.material;
+  NodeSet& ns = m.nodes;
+  const double d = ns.horizon[i];
+  ns.micromodulus[i] = micromodulus_c0(ns.dim, mat.plane, mat.shape, mat.E, d, mat.thickness);
+  if (mat.G0 > 0)
+    ns.critical_stretch[i] =
+        critical_stretch_from_g0(ns.dim, mat.shape, ns.micromodulus[i], d, mat.thickness, mat.G0);
+  else if (std::isfinite(mat.s0))
+    // s0 given directly: keep the fracture energy it implies at the base horizon (s0 ~ delta^-1/2).
+    ns.critical_stretch[i] = mat.s0 * std::sqrt(m.horizon / d);
+  else
+    ns.critical_stretch[i] = mat.s0;
+}
+
+RefineStats refine_nodes(Model& m, std::vector<std::uint32_t> parents, const AdaptSpec& spec) {
+  const auto t0 = std::chrono::steady_clock::now();
+  RefineStats st;
+  NodeSet& ns = m.nodes;
+  BondFamilies& bf = m.bonds;
+  const int D = ns.dim;
+  std::sort(parents.begin(), parents.end());
+  parents.erase(std::unique(parents.begin(), parents.end()), parents.end());
+  if (parents.empty()) return st;
+  momentum_and_kinetic(ns, st.momentum_before, st.kinetic_before);
+  const std::size_t n0 = ns.size();
+  std::vector<char> is_parent(n0, 0);
+  for (std::uint32_t p : parents) is_parent[p] = 1;
+
+  // Broken bonds to keep (both ends survive) and facets of broken bonds that disappear.
+  std::vector<std::uint64_t> broken_pairs;
+  std::vector<Facet> facets;
+  for (std::size_t i = 0; i < n0; ++i) {
+    if (!(ns.flags[i] & kActive)) continue;
+    for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {
+      if (BondFamilies::intact(bf.beta[k])) continue;
+      const std::uint32_t j = bf.neighbor[k];
+      if (!is_parent[i] && !is_parent[j]) {
+        broken_pairs.push_back(pair_key(static_cast<std::uint32_t>(i), j));
+      } else if (D == 2) {
+        const Vec3 xi{ns.x[0][i], ns.x[1][i], 0}, xj{ns.x[0][j], ns.x[1][j], 0};
+        // Pre-crack bonds are cut again geometrically after the rebuild.
+        bool precrack = false;
+        for (const PreCrack& c : m.cracks)
+          precrack = precrack || bond_crosses_segment(xi, xj, c.points[0], c.points[1]);
+        if (precrack) continue;
+        const Vec3 mid = scale(add(xi, xj), 0.5), e = sub(xj, xi);
+        const double L = norm(e);
+        // Short facets: the bond says the crack crosses it, not where nor how it is oriented.
+        const double half = 0.25 * std::min(ns.spacing[i], ns.spacing[j]);
+        const Vec3 t{-e[1] / L * half, e[0] / L * half, 0};
+        facets.push_back({sub(mid, t), add(mid, t)});
+      }
+    }
+  }
+  std::sort(broken_pairs.begin(), broken_pairs.end());
+  broken_pairs.erase(std::unique(broken_pairs.begin(), broken_pairs.end()), broken_pairs.end());
+
+  // Children: offsets +-h/4 along the (possibly rotated) lattice axes.
+  const double cr = std::cos(m.lattice_rotation), sr = std::sin(m.lattice_rotation);
+  const int nchild = 1 << D;
+  for (std::uint32_t p : parents) {
+    double G[3][3][3];  // field (u, v, a) -> component -> direction
+    fit_gradient(ns, bf, p, ns.u, G[0]);
+    fit_gradient(ns, bf, p, ns.v, G[1]);
+    fit_gradient(ns, bf, p, ns.a, G[2]);
+    const double h = ns.spacing[p];
+    const int level = ns.level[p] + 1;
+    for (int c = 0; c < nchild; ++c) {
+      double off[3] = {0, 0, 0};
+      for (int d = 0; d < D; ++d) off[d] = ((c >> d) & 1 ? 0.25 : -0.25) * h;
+      if (D == 2) {
+        const double ox = off[0], oy = off[1];
+        off[0] = cr * ox - sr * oy;
+        off[1] = sr * ox + cr * oy;
+      }
+      const std::size_t q =
+          ns.append({ns.x[0][p] + off[0], ns.x[1][p] + off[1], ns.x[2][p] + off[2]},
+                    ns.volume[p] / nchild, 0.5 * h);
+      ns.level[q] = static_cast<std::int8_t>(level);
+      ns.density[q] = ns.density[p];
+      ns.flags[q] = static_cast<std::uint8_t>(kActive | (ns.flags[p] & kNoFail));
+      for (int d = 0; d < D; ++d) {
+        double du = 0, dv = 0, da = 0;
+        for (int e = 0; e < D; ++e) {
+          du += G[0][d][e] * off[e];
+          dv += G[1][d][e] * off[e];
+          da += G[2][d][e] * off[e];
+        }
+        ns.u[d][q] = ns.u[d][p] + du;
+        ns.v[d][q] = ns.v[d][p] + dv;
+        ns.a[d][q] = ns.a[d][p] + da;
+      }
+      ns.horizon[q] = level_horizon(m, spec, level);
+      scale_material_to_horizon(m, q);
+      ns.sync_current(q);
+    }
+    ns.flags[p] = static_cast<std::uint8_t>(ns.flags[p] & ~kActive);
+    for (int d = 0; d < 3; ++d) ns.v[d][p] = ns.a[d][p] = ns.f[d][p] = ns.b[d][p] = 0.0;
+    ++st.parents;
+    st.children += static_cast<std::size_t>(nchild);
+  }
+
+  // Interface-horizon correction: refined nodes next to a coarser node take m times the
+  // distance to it, so their families lose no volume across the interface (thesis Fig. 3.10b).
+  if (spec.interface_horizon) {
+    double hmax = 0;
+    for (std::size_t i = 0; i < ns.size(); ++i)
+      if (ns.flags[i] & kActive) hmax = std::max(hmax, ns.spacing[i]);
+    CellGrid grid(D, {ns.x[0].data(), ns.x[1].data(), ns.x[2].data()}, ns.size(), 2 * hmax);
+    for (std::size_t i = 0; i < ns.size(); ++i) {
+      if (!(ns.flags[i] & kActive) || ns.level[i] == 0) continue;
+      const double base = level_horizon(m, spec, ns.level[i]);
+      const double mi = base / ns.spacing[i];
+      double dmin = INFINITY;
+      grid.for_each_within({ns.x[0][i], ns.x[1][i], ns.x[2][i]}, 2.0 * ns.spacing[i],
+                           [&](std::uint32_t j, double d2) {
+                             if ((ns.flags[j] & kActive) && ns.spacing[j] > 1.5 * ns.spacing[i])
+                               dmin = std::min(dmin, std::sqrt(d2));
+                           });
+      const double want = std::isfinite(dmin) ? std::max(base, mi * dmin) : base;
+      if (want != ns.horizon[i]) {
+        ns.horizon[i] = want;
+        scale_material_to_horizon(m, i);
+      }
+    }
+  }
+
+  // New families; restore the crack state.
+  bf = build_families(ns, m.quadrature);
+  apply_precracks(ns, bf, m.cracks);
+  CellGrid* fgrid = nullptr;
+  std::vector<double> fx[3];
+  double reach = 0;
+  if (!facets.empty()) {
+    for (auto& v : fx) v.resize(facets.size());
+    for (std::size_t f = 0; f < facets.size(); ++f)
+      for (int d = 0; d < 3; ++d) fx[d][f] = 0.5 * (facets[f].a[d] + facets[f].b[d]);
+    for (const Facet& f : facets) reach = std::max(reach, 0.5 * norm(sub(f.b, f.a)));
+  }
+  double hmax_all = 0;
+  for (std::size_t i = 0; i < ns.size(); ++i)
+    if (ns.flags[i] & kActive) hmax_all = std::max(hmax_all, ns.horizon[i]);
+  CellGrid facet_grid(D, {fx[0].data(), fx[1].data(), fx[2].data()}, facets.size(),
+                      std::max(reach + 0.5 * hmax_all, 1e-300));
+  if (!facets.empty()) fgrid = &facet_grid;
+  for (std::size_t i = 0; i < ns.size(); ++i) {
+    for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {
+      const std::uint32_t j = bf.neighbor[k];
+      if (!BondFamilies::intact(bf.beta[k])) continue;
+      bool broken = false;
+      if (i < n0 && j < n0) {
+        broken = std::binary_search(broken_pairs.begin(), broken_pairs.end(),
+                                    pair_key(static_cast<std::uint32_t>(i), j));
+      } else if (fgrid) {
+        const Vec3 xi{ns.x[0][i], ns.x[1][i], 0}, xj{ns.x[0][j], ns.x[1][j], 0};
+        const Vec3 mid = scale(add(xi, xj), 0.5);
+        const double r = 0.5 * norm(sub(xj, xi)) + reach;
+        fgrid->for_each_within({mid[0], mid[1], 0}, r, [&](std::uint32_t f, double) {
+          if (!broken && bond_crosses_segment(xi, xj, facets[f].a, facets[f].b)) broken = true;
+        });
+      }
+      if (broken) bf.beta[k] = -bf.beta[k];
+    }
+  }
+  mark_unbreakable_bonds(ns, bf);
+  update_damage_weights(ns, bf);
+  momentum_and_kinetic(ns, st.momentum_after, st.kinetic_after);
+  st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return st;
+}
+
+}  // namespace periadapt

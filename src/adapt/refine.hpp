@@ -1,0 +1,38 @@
+#pragma once
+// Node generation for AGRS, method B (thesis 3.2.3, Fig. 3.5b): a parent cell of spacing h splits
+// into 2^dim children at the centres of its sub-cells (spacing h/2, volume V/2^dim); the parent is
+// deactivated and keeps its slot, so node ids stay stable. Children get their horizon from the
+// scaling mode, micromodulus and critical stretch from their horizon (thesis Eqs. 2.13, 2.15,
+// 2.21), and u, v, a from a linear fit over the parent's visible family (intact bonds only, so
+// no field is carried across a crack), anchored at the parent's values: the children's mean
+// equals the parent's value, which conserves linear momentum exactly.
+//
+// Families are then rebuilt. Bonds keep their broken state where both ends survive; new bonds
+// that cross a pre-crack or the facet of a bond broken before the event start broken, so cracks
+// do not heal on refinement.
+#include <cstdint>
+#include <vector>
+
+#include "adapt/adapt_spec.hpp"
+#include "model/model.hpp"
+
+namespace periadapt {
+
+struct RefineStats {
+  std::size_t parents = 0;
+  std::size_t children = 0;
+  double momentum_before[3] = {0, 0, 0};
+  double momentum_after[3] = {0, 0, 0};
+  double kinetic_before = 0, kinetic_after = 0;
+  double seconds = 0;
+};
+
+// Base horizon of a node of `level` (before any interface correction).
+double level_horizon(const Model& m, const AdaptSpec& spec, int level);
+
+// Sets micromodulus and critical stretch of node i from its current horizon.
+void scale_material_to_horizon(Model& m, std::size_t i);
+
+RefineStats refine_nodes(Model& m, std::vector<std::uint32_t> parents, const AdaptSpec& spec);
+
+}  // namespace periadapt

@@ -1,0 +1,30 @@
+#pragma once
+// Refinement triggers (thesis Algorithms A.1, A.2) and the visibility criterion (Bobaru et al.
+// 2009, 5.1; thesis Fig. 3.6). A node can be refined when it is active, below the maximum level,
+// inside the allowed region and carries no load or prescribed motion (thesis, MSc 2.1: nodes with
+// boundary conditions are never refined).
+#include <cstdint>
+#include <vector>
+
+#include "adapt/adapt_spec.hpp"
+#include "model/model.hpp"
+
+namespace periadapt {
+
+// Refinable flags for every node (see above).
+std::vector<char> refinable_nodes(const Model& m, const AdaptSpec& spec);
+
+// Energy trigger: refinable nodes with W_i >= alpha max_j W_j (max over active nodes).
+std::vector<std::uint32_t> energy_trigger(const Model& m, const std::vector<double>& W,
+                                          double alpha, const std::vector<char>& refinable);
+
+// Damage trigger: refinable nodes whose damage grew since `damage_before` was taken.
+std::vector<std::uint32_t> damage_trigger(const Model& m, const std::vector<double>& damage_before,
+                                          const std::vector<char>& refinable);
+
+// Visibility: every refinable node within the horizon of an identified node, at the same or a
+// coarser level, is refined too, so that no coarse node sees the refined zone's core.
+std::vector<std::uint32_t> apply_visibility(const Model& m, const std::vector<std::uint32_t>& ids,
+                                            const std::vector<char>& refinable);
+
+}  // namespace periadapt
