@@ -1,0 +1,164 @@
+// Adaptive grid refinement and scaling: conservation through a refinement event, equivalence of a
+// fully refined grid with the grid built directly, bonds breaking only on the finest level.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "adapt/adaptor.hpp"
+#include "adapt/refine.hpp"
+#include "app/simulation.hpp"
+#include "model/build_model.hpp"
+#include "solver/velocity_verlet.hpp"
+#include "test_helpers.hpp"
+
+using namespace periadapt;
+
+namespace {
+
+const char* kPlate =
+    "model: {dimension: 2, plane: stress}\n"
+    "material: {youngs_modulus: 72.0e9, density: 2440, fracture_energy: 135}\n"
+    "discretization: {spacing: 0.001, horizon_factor: 3, body: {box: {min: [0, 0], max: [0.03, "
+    "0.016]}}}\n"
+    "cracks: [{segment: [[0, 0.008], [0.0121, 0.008]]}]\n"
+    "solver: {time_step: 5.0e-8, steps: 10}\n";
+
+std::vector<std::uint32_t> all_active(const Model& m) {
+  std::vector<std::uint32_t> ids;
+  for (std::uint32_t i = 0; i < m.nodes.size(); ++i)
+    if (m.nodes.flags[i] & kActive) ids.push_back(i);
+  return ids;
+}
+
+}  // namespace
+
+TEST(Adapt, RefinementConservesLinearMomentum) {
+  Model m = build_model(test::deck_from(kPlate));
+  NodeSet& ns = m.nodes;
+  for (std::size_t i = 0; i < ns.size(); ++i) {  // a smooth, non-uniform velocity field
+    ns.v[0][i] = 3.0 + std::sin(150.0 * ns.x[0][i]) * std::cos(90.0 * ns.x[1][i]);
+    ns.v[1][i] = -2.0 + 40.0 * ns.x[0][i] * ns.x[1][i];
+  }
+  AdaptSpec spec;
+  spec.enabled = true;
+  std::vector<std::uint32_t> parents;
+  for (std::uint32_t i = 0; i < ns.size(); ++i)
+    if (ns.x[0][i] > 0.008 && ns.x[0][i] < 0.02) parents.push_back(i);
+  const RefineStats st = refine_nodes(m, parents, spec);
+  EXPECT_EQ(st.children, 4 * parents.size());
+  for (int d = 0; d < 2; ++d)
+    EXPECT_NEAR(st.momentum_after[d], st.momentum_before[d],
+                1e-12 * std::abs(st.momentum_before[d]));
+  // Children carry the parent value plus a linear correction: kinetic energy grows by the
+  // (small) energy of the resolved gradient, never decreases.
+  EXPECT_GE(st.kinetic_after, st.kinetic_before * (1 - 1e-14));
+  EXPECT_LT(st.kinetic_after - st.kinetic_before, 1e-3 * st.kinetic_before);
+  RecordProperty("kinetic_energy_change_rel",
+                 std::to_string((st.kinetic_after - st.kinetic_before) / st.kinetic_before));
+}
+
+TEST(Adapt, FullyRefinedGridEqualsTheGridBuiltDirectly) {
+  // Refining every node once with delta-scaling must give exactly the level-1 grid: same nodes,
+  // volumes, horizons, micromoduli, critical stretches, bonds (pre-crack included), and the same
+  // motion up to summation order.
+  Model a = build_model(test::deck_from(kPlate));
+  AdaptSpec spec;
+  spec.enabled = true;
+  refine_nodes(a, all_active(a), spec);
+  std::string fine = kPlate;
+  fine.replace(fine.find("spacing: 0.001"), 14, "spacing: 0.0005");
+  Model b = build_model(test::deck_from(fine));
+  const auto ia = all_active(a), ib = all_active(b);
+  ASSERT_EQ(ia.size(), ib.size());
+  auto key = [](const NodeSet& ns, std::uint32_t i) {
+    return std::make_pair(std::llround(ns.x[0][i] * 1e7), std::llround(ns.x[1][i] * 1e7));
+  };
+  std::map<std::pair<long long, long long>, std::uint32_t> pos_b;
+  for (std::uint32_t i : ib) pos_b[key(b.nodes, i)] = i;
+  std::size_t broken_a = 0, broken_b = 0, bonds_a = 0, bonds_b = 0;
+  for (std::uint32_t i : ia) {
+    auto it = pos_b.find(key(a.nodes, i));
+    ASSERT_NE(it, pos_b.end()) << "child at " << a.nodes.x[0][i] << ", " << a.nodes.x[1][i];
+    const std::uint32_t j = it->second;
+    EXPECT_NEAR(a.nodes.volume[i], b.nodes.volume[j], 1e-15);
+    EXPECT_NEAR(a.nodes.horizon[i], b.nodes.horizon[j], 1e-15);
+    EXPECT_NEAR(a.nodes.micromodulus[i] / b.nodes.micromodulus[j], 1.0, 1e-12);
+    EXPECT_NEAR(a.nodes.critical_stretch[i] / b.nodes.critical_stretch[j], 1.0, 1e-12);
+    EXPECT_EQ(a.bonds.end(i) - a.bonds.begin(i), b.bonds.end(j) - b.bonds.begin(j));
+    EXPECT_NEAR(a.nodes.damage(i), b.nodes.damage(j), 1e-12);
+    for (std::uint64_t k = a.bonds.begin(i); k < a.bonds.end(i); ++k)
+      broken_a += !BondFamilies::intact(a.bonds.beta[k]);
+    for (std::uint64_t k = b.bonds.begin(j); k < b.bonds.end(j); ++k)
+      broken_b += !BondFamilies::intact(b.bonds.beta[k]);
+    bonds_a += a.bonds.end(i) - a.bonds.begin(i);
+    bonds_b += b.bonds.end(j) - b.bonds.begin(j);
+  }
+  EXPECT_EQ(bonds_a, bonds_b);
+  EXPECT_EQ(broken_a, broken_b);
+  EXPECT_GT(broken_a, 0u);
+
+  // Same motion: a sudden opening velocity across the crack, 40 steps.
+  for (Model* m : {&a, &b})
+    for (std::size_t i = 0; i < m->nodes.size(); ++i)
+      if (m->nodes.flags[i] & kActive) m->nodes.v[1][i] = m->nodes.x[1][i] > 0.008 ? 2.0 : -2.0;
+  VelocityVerlet va(a, 2.5e-8), vb(b, 2.5e-8);
+  va.initialize();
+  vb.initialize();
+  for (int s = 0; s < 40; ++s) {
+    ASSERT_TRUE(va.step());
+    ASSERT_TRUE(vb.step());
+  }
+  double worst = 0, scale = 0;
+  for (std::uint32_t i : ia) {
+    const std::uint32_t j = pos_b[key(a.nodes, i)];
+    for (int d = 0; d < 2; ++d) {
+      worst = std::max(worst, std::abs(a.nodes.u[d][i] - b.nodes.u[d][j]));
+      scale = std::max(scale, std::abs(b.nodes.u[d][j]));
+    }
+  }
+  EXPECT_LT(worst, 1e-9 * scale);
+}
+
+TEST(Adapt, WithTheDamageTriggerBondsBreakOnlyOnTheFinestLevel) {
+  // A pre-cracked plate pulled hard: every bond that the dynamics breaks must belong to nodes
+  // that could not be refined further (the step is undone and redone after refining).
+  const std::string yaml =
+      "model: {dimension: 2, plane: stress}\n"
+      "material: {youngs_modulus: 72.0e9, density: 2440, fracture_energy: 135}\n"
+      "discretization: {spacing: 0.001, horizon_factor: 3, body: {box: {min: [0, 0], max: [0.04, "
+      "0.02]}}}\n"
+      "cracks: [{segment: [[0, 0.01], [0.015, 0.01]]}]\n"
+      "loads:\n"
+      " - {type: traction, region: {box: {min: [0, 0.019], max: [0.04, 0.02]}}, value: [0, 60.0e6]}\n"
+      " - {type: traction, region: {box: {min: [0, 0], max: [0.04, 0.001]}}, value: [0, -60.0e6]}\n"
+      "damage: {no_fail: [{box: {min: [0, 0.019], max: [0.04, 0.02]}}, {box: {min: [0, 0], max: "
+      "[0.04, 0.001]}}]}\n"
+      "adapt: {max_level: 1, damage_trigger: true}\n"
+      "solver: {time_step: 5.0e-8, steps: 200}\n";
+  const Deck dk = test::deck_from(yaml);
+  Model m = build_model(dk);
+  const std::size_t n0 = m.nodes.size();
+  VelocityVerlet vv(m, 5.0e-8);
+  vv.initialize();
+  Adaptor ad(m, vv, dk.adapt);
+  for (int s = 0; s < 200; ++s) ASSERT_TRUE(ad.step());
+  ASSERT_FALSE(ad.events().empty());
+  const NodeSet& ns = m.nodes;
+  std::size_t dynamic_breaks = 0, coarse_breaks = 0;
+  for (std::size_t i = 0; i < ns.size(); ++i) {
+    if (!(ns.flags[i] & kActive)) continue;
+    for (std::uint64_t k = m.bonds.begin(i); k < m.bonds.end(i); ++k) {
+      if (BondFamilies::intact(m.bonds.beta[k])) continue;
+      const std::uint32_t j = m.bonds.neighbor[k];
+      const Vec3 xi{ns.x[0][i], ns.x[1][i], 0}, xj{ns.x[0][j], ns.x[1][j], 0};
+      if (bond_crosses_segment(xi, xj, m.cracks[0].points[0], m.cracks[0].points[1])) continue;
+      ++dynamic_breaks;
+      if (ns.level[i] == 0 && i < n0 && !(ns.flags[i] & kNoFail)) ++coarse_breaks;
+    }
+  }
+  EXPECT_GT(dynamic_breaks, 0u) << "the crack must have grown";
+  EXPECT_EQ(coarse_breaks, 0u);
+  RecordProperty("nodes_added", std::to_string(ad.nodes_added()));
+}
