@@ -4,19 +4,52 @@
 #include <cmath>
 #include <map>
 
+#include "core/cell_grid.hpp"
+
 namespace periadapt {
 
 namespace {
 Vec3 transverse_of(const Vec3& d) { return {-d[1], d[0], 0.0}; }
 }  // namespace
 
+std::vector<std::uint32_t> CrackTipTracker::crack_nodes(const NodeSet& ns) const {
+  // Damaged nodes, then the ones linked to the initial tip through chains of damaged nodes at
+  // most `link` apart: cracks nucleating elsewhere (edges, corners) are not this crack.
+  std::vector<std::uint32_t> dmg;
+  for (std::size_t i = 0; i < ns.size(); ++i)
+    if ((ns.flags[i] & kActive) && ns.damage(i) > opt_.threshold)
+      dmg.push_back(static_cast<std::uint32_t>(i));
+  if (dmg.empty() || !(opt_.link > 0)) return dmg;
+  std::array<std::vector<double>, 3> c;
+  for (int d = 0; d < 3; ++d) {
+    c[d].resize(dmg.size());
+    for (std::size_t k = 0; k < dmg.size(); ++k) c[d][k] = ns.x[d][dmg[k]];
+  }
+  CellGrid grid(ns.dim, {c[0].data(), c[1].data(), c[2].data()}, dmg.size(), opt_.link);
+  std::vector<char> seen(dmg.size(), 0);
+  std::vector<std::uint32_t> queue;
+  grid.for_each_within(opt_.origin, opt_.seed_radius, [&](std::uint32_t k, double) {
+    if (!seen[k]) seen[k] = 1, queue.push_back(k);
+  });
+  for (std::size_t q = 0; q < queue.size(); ++q) {
+    const std::uint32_t k = queue[q];
+    grid.for_each_within({c[0][k], c[1][k], c[2][k]}, opt_.link, [&](std::uint32_t l, double) {
+      if (!seen[l]) seen[l] = 1, queue.push_back(l);
+    });
+  }
+  std::vector<std::uint32_t> out;
+  for (std::size_t k = 0; k < dmg.size(); ++k)
+    if (seen[k]) out.push_back(dmg[k]);
+  return out;
+}
+
 std::optional<TipSample> CrackTipTracker::observe(const NodeSet& ns, double t) {
   const Vec3 dir = opt_.direction;
   const Vec3 nrm = transverse_of(dir);
   double best = -INFINITY, best_tr = 0;
   std::size_t best_i = ns.size();
-  for (std::size_t i = 0; i < ns.size(); ++i) {
-    if (!(ns.flags[i] & kActive) || ns.damage(i) <= opt_.threshold) continue;
+  const std::vector<std::uint32_t> crack = crack_nodes(ns);
+  for (std::uint32_t i : crack) {
     const Vec3 p{ns.x[0][i], ns.x[1][i], ns.x[2][i]};
     const Vec3 r = sub(p, opt_.origin);
     const double tr = dot(r, nrm);
@@ -42,18 +75,18 @@ std::optional<TipSample> CrackTipTracker::observe(const NodeSet& ns, double t) {
     current_speed_ = v;
     window_start_ = s;
   }
-  if (!branching_time_ && initiation_) detect_branching(ns, t);
+  if (!branching_time_ && initiation_) detect_branching(ns, crack, t);
   return s;
 }
 
-void CrackTipTracker::detect_branching(const NodeSet& ns, double t) {
+void CrackTipTracker::detect_branching(const NodeSet& ns, const std::vector<std::uint32_t>& crack,
+                                       double t) {
   if (ns.dim != 2 || opt_.column <= 0 || opt_.branch_gap <= 0) return;
   const Vec3 dir = opt_.direction;
   const Vec3 nrm = transverse_of(dir);
-  // Cross-sections ahead of the initial tip: transverse coordinates of damaged nodes.
+  // Cross-sections ahead of the initial tip: transverse coordinates of the crack's nodes.
   std::map<long, std::vector<double>> columns;
-  for (std::size_t i = 0; i < ns.size(); ++i) {
-    if (!(ns.flags[i] & kActive) || ns.damage(i) <= opt_.threshold) continue;
+  for (std::uint32_t i : crack) {
     const Vec3 r = sub({ns.x[0][i], ns.x[1][i], ns.x[2][i]}, opt_.origin);
     const double adv = dot(r, dir);
     if (adv <= 0) continue;

@@ -21,6 +21,8 @@ struct CrackTipOptions {
   double advance = 0.0;      // tip must move this far ahead of the origin to count as started
   double branch_gap = 0.0;   // bands farther apart than this count as two branches
   double column = 0.0;       // width of the cross-sections used for branch detection
+  double link = 0.0;         // damaged nodes closer than this belong to the same crack (0: all)
+  double seed_radius = 0.0;  // damaged nodes this close to the origin start the crack
 };
 
 struct TipSample {
@@ -48,7 +50,8 @@ class CrackTipTracker {
   double max_speed() const;
 
  private:
-  void detect_branching(const NodeSet& nodes, double t);
+  void detect_branching(const NodeSet& nodes, const std::vector<std::uint32_t>& crack, double t);
+  std::vector<std::uint32_t> crack_nodes(const NodeSet& nodes) const;
   CrackTipOptions opt_;
   std::vector<TipSample> samples_;
   std::vector<std::array<double, 2>> window_speeds_;

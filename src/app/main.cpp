@@ -11,6 +11,7 @@
 
 #include "app/simulation.hpp"
 #include "app/static_run.hpp"
+#include "adapt/refine.hpp"
 #include "studies/bobaru_1d_static.hpp"
 #include "io/deck.hpp"
 #include "io/deck_error.hpp"
@@ -66,6 +67,19 @@ int check(const std::string& path) {
              m.bonds.num_bonds() * BondFamilies::bytes_per_bond() / 1e6,
              BondFamilies::bytes_per_bond(), m.nodes.size() * NodeSet::bytes_per_node() / 1e6,
              NodeSet::bytes_per_node());
+  if (dk.adapt.enabled) {
+    const AdaptSpec& a = dk.adapt;
+    std::string trig;
+    if (a.energy_fraction) trig += fmt::format("energy W >= {:.3g} W_max", *a.energy_fraction);
+    if (a.damage_trigger) trig += std::string(trig.empty() ? "" : " and ") + "damage growth";
+    fmt::print("adapt           method B to level {}, {}-scaling, {}, from t = {:.4g} s{}\n",
+               a.max_level,
+               a.scaling == HorizonScaling::Delta ? "delta" : a.scaling == HorizonScaling::M ? "m" : "delta-m",
+               trig, a.start_time, a.interface_horizon ? ", interface-horizon correction" : "");
+    for (int l = 1; l <= a.max_level; ++l)
+      fmt::print("  level {}       spacing {:.6g} m, horizon {:.6g} m\n", l,
+                 m.grid_spacing / std::ldexp(1.0, l), level_horizon(m, a, l));
+  }
   fmt::print("output          {}\n", dk.output.directory);
   return 0;
 }

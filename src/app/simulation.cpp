@@ -96,6 +96,10 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
     tip.advance = m.grid_spacing;
     tip.column = m.grid_spacing;
     tip.branch_gap = dk.output.branch_gap ? *dk.output.branch_gap : m.horizon;
+    // Two grid spacings bridge the gaps a crack band has on any level; the pre-crack's own band
+    // within a horizon of its tip starts the crack.
+    tip.link = 2.0 * m.grid_spacing;
+    tip.seed_radius = m.horizon;
   }
   CrackTipTracker tracker(tip);
 
