@@ -9,7 +9,10 @@
 namespace periadapt {
 
 Adaptor::Adaptor(Model& m, VelocityVerlet& vv, const AdaptSpec& spec)
-    : m_(m), vv_(vv), spec_(spec) {}
+    : m_(m), vv_(vv), spec_(spec) {
+  // The energy trigger reads W from the solver's own force pass instead of a second bond loop.
+  if (spec_.energy_fraction) vv_.set_energy_output(&W_);
+}
 
 std::size_t Adaptor::nodes_added() const {
   std::size_t n = 0;
@@ -67,7 +70,7 @@ bool Adaptor::step() {
     return false;
   }
   if (spec_.energy_fraction && vv_.step_count() % spec_.check_every == 0) {
-    pmb_energy_density(ns, m_.bonds, m_.material.shape, W_);
+    if (W_.size() != ns.size()) pmb_energy_density(ns, m_.bonds, m_.material.shape, W_);
     const auto ids = energy_trigger(m_, W_, *spec_.energy_fraction, refinable_nodes(m_, spec_));
     if (!ids.empty()) refine(ids, "energy");
   }

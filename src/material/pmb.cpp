@@ -17,9 +17,10 @@ inline double g(double t) {
   else return t;
 }
 
-template <int D, InfluenceShape S>
+// E: also the strain-energy density W_i (thesis Eq. 2.14) of the bonds intact after this call.
+template <int D, InfluenceShape S, bool E>
 std::size_t forces_kernel(NodeSet& ns, BondFamilies& bf, bool allow_breaking,
-                          std::vector<std::uint64_t>* log) {
+                          std::vector<std::uint64_t>* log, double* W) {
   const std::size_t n = ns.size();
   const double* yp = ns.cur.data();
   const std::uint8_t* flags = ns.flags.data();
@@ -43,10 +44,10 @@ std::size_t forces_kernel(NodeSet& ns, BondFamilies& bf, bool allow_breaking,
     const double s0 = (allow_breaking && !(flags[i] & kNoFail)) ? ns.critical_stretch[i] : INFINITY;
     const double delta = ns.horizon[i];
     const std::uint64_t kb = off[i], ke = off[i + 1];
-    double a0 = 0, a1 = 0, a2 = 0;
+    double a0 = 0, a1 = 0, a2 = 0, w = 0;
     double smax = -INFINITY;
     // Fast pass: forces of intact bonds and the largest stretch; nothing is written per bond.
-#pragma omp simd reduction(+ : a0, a1, a2) reduction(max : smax)
+#pragma omp simd reduction(+ : a0, a1, a2, w) reduction(max : smax)
     for (std::uint64_t k = kb; k < ke; ++k) {
       // 64-bit index arithmetic: a 32-bit 4*j would have to wrap and defeats the gathers.
       const std::size_t j = 4 * static_cast<std::size_t>(nbr[k]);
@@ -68,10 +69,11 @@ std::size_t forces_kernel(NodeSet& ns, BondFamilies& bf, bool allow_breaking,
       a0 += fr * d0;
       a1 += fr * d1;
       a2 += fr * d2;
+      if constexpr (E) w += gw * s * s / ail;
     }
     if (smax > s0) {
       // Rare: some bond of this node breaks now. Break it and redo the node without it.
-      a0 = a1 = a2 = 0;
+      a0 = a1 = a2 = w = 0;
       double bw = 0;
       std::size_t nb = 0;
       for (std::uint64_t k = kb; k < ke; ++k) {
@@ -102,10 +104,12 @@ std::size_t forces_kernel(NodeSet& ns, BondFamilies& bf, bool allow_breaking,
         a0 += fr * d0;
         a1 += fr * d1;
         a2 += fr * d2;
+        if constexpr (E) w += gw * s * s / ail;
       }
       ns.broken_weight[i] += bw;
       broken_total += nb;
     }
+    if constexpr (E) W[i] = 0.25 * ci * w;
     f0[i] = a0;
     if constexpr (D > 1) f1[i] = a1;
     if constexpr (D > 2) f2[i] = a2;
@@ -178,8 +182,9 @@ auto dispatch(int dim, InfluenceShape s, Args&&... args) {
 template <int D, InfluenceShape S>
 struct ForcesOp {
   static std::size_t run(NodeSet& ns, BondFamilies& bf, bool brk,
-                         std::vector<std::uint64_t>* log) {
-    return forces_kernel<D, S>(ns, bf, brk, log);
+                         std::vector<std::uint64_t>* log, double* W) {
+    return W ? forces_kernel<D, S, true>(ns, bf, brk, log, W)
+             : forces_kernel<D, S, false>(ns, bf, brk, log, nullptr);
   }
 };
 template <int D, InfluenceShape S>
@@ -200,10 +205,16 @@ struct StiffnessOp {
 }  // namespace
 
 PmbStepStats pmb_forces(NodeSet& nodes, BondFamilies& bonds, InfluenceShape shape,
-                        bool allow_breaking, std::vector<std::uint64_t>* broken_log) {
+                        bool allow_breaking, std::vector<std::uint64_t>* broken_log,
+                        std::vector<double>* W) {
   PmbStepStats st;
+  double* w = nullptr;
+  if (W) {
+    W->assign(nodes.size(), 0.0);
+    w = W->data();
+  }
   st.newly_broken =
-      dispatch<ForcesOp>(nodes.dim, shape, nodes, bonds, allow_breaking, broken_log);
+      dispatch<ForcesOp>(nodes.dim, shape, nodes, bonds, allow_breaking, broken_log, w);
   return st;
 }
 

@@ -19,9 +19,11 @@ struct PmbStepStats {
 // from the current positions y. When `allow_breaking`, bonds whose stretch exceeds the source
 // node's critical stretch break irreversibly (unless either end is flagged no-fail).
 // When `broken_log` is given, the indices of the bonds broken by this call are appended to it
-// (in no particular order) so that a step can be undone.
+// (in no particular order) so that a step can be undone. When `W` is given, it receives the
+// strain-energy density of every node from the same pass (inactive nodes: 0).
 PmbStepStats pmb_forces(NodeSet& nodes, BondFamilies& bonds, InfluenceShape shape,
-                        bool allow_breaking, std::vector<std::uint64_t>* broken_log = nullptr);
+                        bool allow_breaking, std::vector<std::uint64_t>* broken_log = nullptr,
+                        std::vector<double>* W = nullptr);
 
 // Strain-energy density W_i = 1/4 sum_j c_i g s^2 xi beta_j V_j over intact bonds (thesis 2.14).
 void pmb_energy_density(const NodeSet& nodes, const BondFamilies& bonds, InfluenceShape shape,

@@ -61,7 +61,7 @@ void VelocityVerlet::impose_motions(double t, bool velocities_only) {
 void VelocityVerlet::compute_accelerations() {
   NodeSet& ns = m_.nodes;
   const PmbStepStats st = pmb_forces(ns, m_.bonds, m_.material.shape, m_.damage_enabled,
-                                     undo_enabled_ ? &saved_.broken_log : nullptr);
+                                     undo_enabled_ ? &saved_.broken_log : nullptr, energy_out_);
   broken_total_ += st.newly_broken;
   bond_evals_ += static_cast<double>(m_.bonds.num_bonds());
   const std::size_t n = ns.size();

@@ -43,6 +43,8 @@ class VelocityVerlet {
   void undo_last_step();
   // Recomputes loads and accelerations at the current state; call after the grid changed.
   void refresh();
+  // When set, every force pass also writes the strain-energy density of each node here.
+  void set_energy_output(std::vector<double>* W) { energy_out_ = W; }
 
  private:
   void apply_loads(double t);
@@ -61,6 +63,7 @@ class VelocityVerlet {
   double runaway_limit_ = 0.0;
   DivergenceError divergence_{};
   bool undo_enabled_ = false;
+  std::vector<double>* energy_out_ = nullptr;
   struct Saved {
     std::array<std::vector<double>, 3> u, v, a;
     std::vector<double> broken_weight, v_prev_fixed, reaction;
