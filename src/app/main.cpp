@@ -39,7 +39,7 @@ int check(const std::string& path) {
   fmt::print("grid            spacing {:.6g} m, horizon {:.6g} m (m = {:.4g}), rotation {:.6g} deg, "
              "quadrature {}\n",
              dk.grid.spacing, dk.horizon, dk.horizon_factor, dk.grid.rotation_deg,
-             dk.quadrature == Quadrature::Full ? "full" : dk.quadrature == Quadrature::Subcell ? "subcell" : "pa_pdlammps");
+             dk.quadrature == Quadrature::Full ? "full" : dk.quadrature == Quadrature::Subcell ? "subcell" : dk.quadrature == Quadrature::IpaHybrid ? "ipa_hybrid" : "pa_pdlammps");
   fmt::print("nodes           {}\n", m.nodes.size());
   fmt::print("bonds           {} (mean {:.1f} per node), {} cut by {} pre-crack(s)\n",
              m.bonds.num_bonds(),

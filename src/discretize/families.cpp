@@ -30,7 +30,7 @@ BondFamilies build_families(const NodeSet& nodes, const QuadratureSpec& quad) {
       if (j == i || !(nodes.flags[j] & kActive)) return;
       const double xi = std::sqrt(d2);
       double b;
-      if (quad.rule == Quadrature::Subcell) {
+      if (quad.rule == Quadrature::Subcell || quad.rule == Quadrature::IpaHybrid) {
         const std::array<double, 3> off{nodes.x[0][j] - p[0], nodes.x[1][j] - p[1],
                                         nodes.x[2][j] - p[2]};
         b = subcell_fraction(nodes.dim, off, delta, nodes.spacing[j], quad.lattice_rotation);

@@ -5,8 +5,50 @@
 
 namespace periadapt {
 
+namespace {
+
+// Antiderivative of sqrt(R^2 - x^2) on [-R, R].
+double chord_integral(double x, double R) {
+  x = std::clamp(x, -R, R);
+  return 0.5 * (x * std::sqrt(std::max(0.0, R * R - x * x)) + R * R * std::asin(x / R));
+}
+
+}  // namespace
+
+double disk_rectangle_area(double x0, double x1, double y0, double y1, double R) {
+  // Integrate, over x, the length of [y0, y1] inside the chord [-s(x), s(x)], s = sqrt(R^2-x^2).
+  // Between the breakpoints where s(x) = |y0| or |y1| the length is one closed form.
+  const double a = std::max(x0, -R), b = std::min(x1, R);
+  if (!(b > a) || y1 <= -R || y0 >= R) return 0.0;
+  double pts[6] = {a, b, 0, 0, 0, 0};
+  int np = 2;
+  for (double y : {y0, y1})
+    if (std::abs(y) <= R) {  // tangency (|y| = R) splits at x = 0 too
+      const double xb = std::sqrt(R * R - y * y);
+      for (double c : {-xb, xb})
+        if (c > a && c < b) pts[np++] = c;
+    }
+  std::sort(pts, pts + np);
+  double area = 0;
+  for (int k = 0; k + 1 < np; ++k) {
+    const double l = pts[k], r = pts[k + 1];
+    if (!(r > l)) continue;
+    const double xm = 0.5 * (l + r);
+    const double sm = std::sqrt(std::max(0.0, R * R - xm * xm));
+    const bool top_in = y1 <= sm, bottom_in = y0 >= -sm;  // which ends the chord does not clip
+    if (std::min(y1, sm) <= std::max(y0, -sm)) continue;  // empty on this piece
+    const double S = chord_integral(r, R) - chord_integral(l, R);  // integral of s(x)
+    const double w = r - l;
+    if (top_in && bottom_in) area += (y1 - y0) * w;
+    else if (top_in) area += y1 * w + S;   // from -s(x) to y1
+    else if (bottom_in) area += S - y0 * w;  // from y0 to s(x)
+    else area += 2 * S;
+  }
+  return area;
+}
+
 double quadrature_search_radius(Quadrature q, int dim, double delta, double dx) {
-  if (q != Quadrature::Subcell) return delta;
+  if (q != Quadrature::Subcell && q != Quadrature::IpaHybrid) return delta;
   return delta + 0.5 * std::sqrt(static_cast<double>(dim)) * dx;
 }
 
@@ -26,6 +68,11 @@ double subcell_fraction(int dim, const std::array<double, 3>& xi, double delta, 
   if (dim == 1) {  // exact
     const double lo = std::abs(p[0]) - 0.5 * dx;
     return std::clamp((delta - lo) / dx, 0.0, 1.0);
+  }
+  if (dim == 2) {  // exact analytic area (IPA-Hybrid areas, Seleson 2014)
+    const double h = 0.5 * dx;
+    return std::clamp(disk_rectangle_area(p[0] - h, p[0] + h, p[1] - h, p[1] + h, delta) / (dx * dx),
+                      0.0, 1.0);
   }
   const int n = dim == 2 ? 32 : 12;
   const double h = dx / n, d2 = delta * delta;

@@ -214,10 +214,15 @@ Deck parse_deck(const std::string& text, const std::string& name) {
     std::string reg = s.choice("registration", {"cell_centered", "node_on_edge"}, "cell_centered");
     g.registration = reg == "cell_centered" ? Registration::CellCentered : Registration::NodeOnEdge;
     for (Section h : s.list("holes")) g.holes.push_back(parse_region(h, dk.dim));
-    std::string q = s.choice("quadrature", {"pa_pdlammps", "subcell", "full"}, "pa_pdlammps");
-    dk.quadrature = q == "full"      ? Quadrature::Full
-                    : q == "subcell" ? Quadrature::Subcell
-                                     : Quadrature::PaPdlammps;
+    std::string q =
+        s.choice("quadrature", {"pa_pdlammps", "ipa_hybrid", "subcell", "full"}, "pa_pdlammps");
+    if (q == "ipa_hybrid" && dk.dim != 2)
+      s.fail("quadrature", "ipa_hybrid is a 2D rule; use subcell (accurate covered volumes) in " +
+                               std::to_string(dk.dim) + "D");
+    dk.quadrature = q == "full"         ? Quadrature::Full
+                    : q == "subcell"    ? Quadrature::Subcell
+                    : q == "ipa_hybrid" ? Quadrature::IpaHybrid
+                                        : Quadrature::PaPdlammps;
     s.finish();
   }
   // --- cracks
