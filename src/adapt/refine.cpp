@@ -6,6 +6,7 @@
 
 #include "core/cell_grid.hpp"
 #include "core/geometry.hpp"
+#include "discretize/surface_correction.hpp"
 #include "material/micromodulus.hpp"
 
 namespace periadapt {
@@ -224,6 +225,9 @@ RefineStats refine_nodes(Model& m, std::vector<std::uint32_t> parents, const Ada
 
   // New families; restore the crack state.
   bf = build_families(ns, m.quadrature);
+  if (m.surface_correction)
+    apply_surface_correction(ns, bf, m.material.shape,
+                             p_wave_modulus(D, m.material.plane, m.material.E, m.material.nu));
   apply_precracks(ns, bf, m.cracks);
   CellGrid* fgrid = nullptr;
   std::vector<double> fx[3];

@@ -219,6 +219,7 @@ Deck parse_deck(const std::string& text, const std::string& name) {
     if (q == "ipa_hybrid" && dk.dim != 2)
       s.fail("quadrature", "ipa_hybrid is a 2D rule; use subcell (accurate covered volumes) in " +
                                std::to_string(dk.dim) + "D");
+    dk.surface_correction = s.boolean("surface_correction", false);
     dk.quadrature = q == "full"         ? Quadrature::Full
                     : q == "subcell"    ? Quadrature::Subcell
                     : q == "ipa_hybrid" ? Quadrature::IpaHybrid

@@ -64,6 +64,7 @@ struct Deck {
   double horizon_factor = 3.0;  // m = delta / dx
   double horizon = 0.0;         // delta
   Quadrature quadrature = Quadrature::PaPdlammps;
+  bool surface_correction = false;
   // cracks, loads, boundary conditions, initial fields
   std::vector<PreCrack> cracks;
   std::vector<LoadSpec> loads;

@@ -1,5 +1,7 @@
 #include "model/build_model.hpp"
 
+#include "discretize/surface_correction.hpp"
+
 #include <algorithm>
 #include <chrono>
 
@@ -68,6 +70,9 @@ Model build_model(const Deck& dk) {
   m.bonds = build_families(ns, qs);
   m.family_build_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  m.surface_correction = dk.surface_correction;
+  if (m.surface_correction)
+    apply_surface_correction(ns, m.bonds, dk.shape, p_wave_modulus(dk.dim, dk.plane, dk.E, mat.nu));
   m.precrack_bonds = apply_precracks(ns, m.bonds, dk.cracks);
   update_damage_weights(ns, m.bonds);
   m.quadrature = qs;

@@ -58,6 +58,7 @@ struct Model {
   QuadratureSpec quadrature;
   std::vector<PreCrack> cracks;
   double lattice_rotation = 0.0;  // radians (2D grids): orientation of children offsets
+  bool surface_correction = false;
 };
 
 }  // namespace periadapt
