@@ -123,3 +123,65 @@ TEST(Static, DualHorizonPairingEqualsSourcePairingOnAUniformGrid) {
                                           BondPairing::DualHorizon);
   EXPECT_LT((Ks - Kd).norm(), 1e-12 * Ks.norm());
 }
+
+#include "solver/dynamic_relaxation.hpp"
+
+TEST(Static, DynamicRelaxationConvergesToTheLinearSolution) {
+  // A plate pulled at a small strain (1e-5): the geometrically exact PMB relaxed by adaptive
+  // dynamic relaxation must agree with the linearized static solution up to the nonlinearity of
+  // the strain (1e-5) and the error left by the relaxation tolerance (1e-7 of the load, times
+  // the conditioning of the plate): 1e-3.
+  const std::string yaml =
+      "model: {dimension: 2, plane: stress}\n"
+      "material: {youngs_modulus: 70.0e9, density: 2700}\n"
+      "discretization: {spacing: 0.01, horizon_factor: 3.015, quadrature: ipa_hybrid,"
+      " body: {box: {min: [0, 0], max: [0.4, 0.2]}}}\n"
+      "loads: [{type: traction, region: {box: {min: [0.39, 0], max: [0.4, 0.2]}}, value: [700.0e3, 0]}]\n"
+      "boundary_conditions:\n"
+      " - {region: {box: {min: [0, 0], max: [0.01, 0.2]}}, displacement: [0, null]}\n"
+      " - {region: {box: {min: [0, 0], max: [0.01, 0.01]}}, displacement: [null, 0]}\n"
+      "damage: {enabled: false}\nsolver: {type: relaxation, tolerance: 1.0e-7}\n";
+  const Deck dk = test::deck_from(yaml);
+  Model a = build_model(dk), b = build_model(dk);
+  solve_linear_static(a, model_constraints(a));
+  RelaxationOptions ro;
+  ro.tolerance = 1e-7;
+  ASSERT_TRUE(run_dynamic_relaxation(b, ro, [](const RelaxationStepReport&) {}));
+  double worst = 0, scale = 0;
+  for (std::size_t i = 0; i < a.nodes.size(); ++i)
+    for (int d = 0; d < 2; ++d) {
+      worst = std::max(worst, std::abs(a.nodes.u[d][i] - b.nodes.u[d][i]));
+      scale = std::max(scale, std::abs(a.nodes.u[d][i]));
+    }
+  ASSERT_GT(scale, 0);
+  EXPECT_LT(worst / scale, 1e-3);
+  RecordProperty("relative_difference", std::to_string(worst / scale));
+}
+
+TEST(Static, DynamicRelaxationBreaksBondsUnderARisingLoad) {
+  // A notched bar pulled by a prescribed end displacement in 10 steps: bonds break at the notch
+  // once the strain there exceeds s0, and the run still converges at every step.
+  const std::string yaml =
+      "model: {dimension: 2, plane: stress}\n"
+      "material: {youngs_modulus: 70.0e9, density: 2700, critical_stretch: 2.0e-3}\n"
+      "discretization: {spacing: 0.01, horizon_factor: 3, body: {box: {min: [0, 0], max: [0.3, 0.1]}}}\n"
+      "cracks: [{segment: [[0.15, 0.0], [0.15, 0.04]]}]\n"
+      "boundary_conditions:\n"
+      " - {region: {box: {min: [0, 0], max: [0.03, 0.1]}}, displacement: [0, 0]}\n"
+      " - {region: {box: {min: [0.27, 0], max: [0.3, 0.1]}}, displacement: [6.0e-4, 0]}\n"
+      "solver: {type: relaxation, load_steps: 10, tolerance: 1.0e-6}\n";
+  const Deck dk = test::deck_from(yaml);
+  Model m = build_model(dk);
+  RelaxationOptions ro;
+  ro.load_steps = 10;
+  ro.tolerance = 1e-6;
+  std::size_t broken = 0;
+  int steps = 0;
+  ASSERT_TRUE(run_dynamic_relaxation(m, ro, [&](const RelaxationStepReport& r) {
+    EXPECT_TRUE(r.converged);
+    broken += r.newly_broken;
+    ++steps;
+  }));
+  EXPECT_EQ(steps, 10);
+  EXPECT_GT(broken, 0u);
+}

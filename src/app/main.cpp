@@ -11,6 +11,7 @@
 
 #include "app/simulation.hpp"
 #include "app/static_run.hpp"
+#include "app/relaxation_run.hpp"
 #include "adapt/refine.hpp"
 #include "studies/bobaru_1d_static.hpp"
 #include "studies/static_plate_2d.hpp"
@@ -25,7 +26,7 @@ namespace {
 int check(const std::string& path) {
   const Deck dk = load_deck(path);
   const Model m = build_model(dk);
-  const bool is_static = dk.solver == Deck::SolverType::Static;
+  const bool is_static = dk.solver != Deck::SolverType::Explicit;
   const TimeStepChoice ts = is_static ? TimeStepChoice{0, 0, 0, 0} : choose_time_step(dk, m);
   const MaterialLaw& mat = m.material;
   fmt::print("deck            {}\n", path);
@@ -48,8 +49,12 @@ int check(const std::string& path) {
              m.precrack_bonds, dk.cracks.size());
   fmt::print("wave speed      {:.6g} m/s\n", mat.wave_speed);
   if (is_static) {
-    fmt::print("solver          static (linearized bond-based, {} bond pairing)\n",
-               dk.dual_horizon ? "dual-horizon" : "source-horizon");
+    if (dk.solver == Deck::SolverType::Static)
+      fmt::print("solver          static (linearized bond-based, {} bond pairing)\n",
+                 dk.dual_horizon ? "dual-horizon" : "source-horizon");
+    else
+      fmt::print("solver          dynamic relaxation, {} load steps, tolerance {:.3g}\n",
+                 dk.load_steps, dk.relax_tolerance);
   } else {
     fmt::print("dt_crit         {:.6e} s (Silling-Askari, node {})\n", ts.dt_crit, ts.limiting_node);
     fmt::print("dt              {:.6e} s{}\n", ts.dt, dk.time_step ? " (deck)" : " (safety x dt_crit)");
@@ -125,6 +130,13 @@ int main(int argc, char** argv) {
     if (!out.empty()) ro.out_dir = out;
     ro.quiet = quiet;
     const Deck dk = load_deck(deck);
+    if (dk.solver == Deck::SolverType::Relaxation) {
+      const RunResult r = run_relaxation(dk, ro);
+      fmt::print("done: dynamic relaxation, {} load steps, {} iterations, {} bonds broken\n",
+                 dk.load_steps, r.summary["solver"]["iterations"].get<long>(),
+                 r.summary["broken_bonds"].get<std::size_t>());
+      return 0;
+    }
     if (dk.solver == Deck::SolverType::Static) {
       const RunResult r = run_static(dk, ro);
       fmt::print("done: static solve, max |u| = {:.6e} m; outputs in {}\n",

@@ -298,9 +298,26 @@ Deck parse_deck(const std::string& text, const std::string& name) {
   // --- solver
   {
     Section s = top.section("solver");
-    const std::string type = s.choice("type", {"explicit", "static"}, "explicit");
-    dk.solver = type == "static" ? Deck::SolverType::Static : Deck::SolverType::Explicit;
-    if (dk.solver == Deck::SolverType::Static) {
+    const std::string type = s.choice("type", {"explicit", "static", "relaxation"}, "explicit");
+    dk.solver = type == "static"       ? Deck::SolverType::Static
+                : type == "relaxation" ? Deck::SolverType::Relaxation
+                                       : Deck::SolverType::Explicit;
+    if (dk.solver == Deck::SolverType::Relaxation) {
+      for (const char* k : {"time_step", "end_time", "steps", "safety_factor",
+                            "allow_unstable_time_step"})
+        if (s.has(k))
+          s.fail(k, "dynamic relaxation has no physical time step; use load_steps, tolerance "
+                    "and max_iterations");
+      dk.load_steps = static_cast<int>(s.integer("load_steps", 1, [](long v) {
+        return (v >= 1 && v <= 1000000) ? std::string() : std::string("must be in 1 ... 1e6");
+      }));
+      dk.relax_tolerance = s.number("tolerance", 1e-6, [](double v) {
+        return (v > 0 && v < 1) ? std::string() : std::string("a relative residual in (0, 1)");
+      });
+      dk.relax_max_iterations = s.integer("max_iterations", 200000, [](long v) {
+        return v >= 1 ? std::string() : std::string("must be >= 1");
+      });
+    } else if (dk.solver == Deck::SolverType::Static) {
       // Linearized equilibrium: no time stepping keys, no bond breaking.
       for (const char* k : {"time_step", "end_time", "steps", "safety_factor",
                             "allow_unstable_time_step"})
@@ -333,7 +350,7 @@ Deck parse_deck(const std::string& text, const std::string& name) {
   if (auto a = top.optional_section("adapt")) {
     AdaptSpec& ad = dk.adapt;
     ad.enabled = true;
-    if (dk.solver == Deck::SolverType::Static)
+    if (dk.solver != Deck::SolverType::Explicit)
       a->fail("", "adaptive refinement works with the explicit solver only");
     ad.max_level = static_cast<int>(a->integer("max_level", 1, [](long v) {
       return (v >= 1 && v <= 6) ? std::string() : std::string("must be in 1 ... 6");

@@ -74,7 +74,10 @@ struct Deck {
   bool damage = true;
   std::vector<Shape> no_fail;
   // solver
-  enum class SolverType { Explicit, Static } solver = SolverType::Explicit;
+  enum class SolverType { Explicit, Static, Relaxation } solver = SolverType::Explicit;
+  int load_steps = 1;               // relaxation
+  double relax_tolerance = 1e-6;    // relaxation
+  long relax_max_iterations = 200000;
   bool dual_horizon = false;  // static solver: bonds act on both ends (dual-horizon form)
   std::optional<double> time_step;
   double safety = 0.8;
