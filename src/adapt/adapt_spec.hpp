@@ -14,8 +14,16 @@ enum class HorizonScaling {
   DeltaM,  // delta m-convergence: m per level from `m_per_level`, delta = m_l dX_l
 };
 
+// A zone refined before the run to a fixed level.
+struct InitialRefinement {
+  Shape region;
+  int level = 1;
+};
+
 struct AdaptSpec {
   bool enabled = false;
+  std::vector<InitialRefinement> initial;  // refined at t = 0
+  bool visibility = true;                  // initial zones widened by the visibility criterion
   int max_level = 1;
   HorizonScaling scaling = HorizonScaling::Delta;
   std::vector<double> m_per_level;  // DeltaM: m of levels 0, 1, ... (at least max_level + 1)

@@ -110,7 +110,8 @@ void scale_material_to_horizon(Model& m, std::size_t i) {
     ns.critical_stretch[i] = mat.s0;
 }
 
-RefineStats refine_nodes(Model& m, std::vector<std::uint32_t> parents, const AdaptSpec& spec) {
+RefineStats refine_nodes(Model& m, std::vector<std::uint32_t> parents, const AdaptSpec& spec,
+                         bool inherit_boundary) {
   const auto t0 = std::chrono::steady_clock::now();
   RefineStats st;
   NodeSet& ns = m.nodes;
@@ -198,6 +199,40 @@ RefineStats refine_nodes(Model& m, std::vector<std::uint32_t> parents, const Ada
     st.children += static_cast<std::size_t>(nchild);
   }
 
+  if (inherit_boundary) {
+    // Parent p's children are the nchild consecutive ids created for it, in parents' order.
+    std::vector<std::size_t> first_child(n0, 0);
+    for (std::size_t k = 0; k < parents.size(); ++k)
+      first_child[parents[k]] = n0 + k * static_cast<std::size_t>(nchild);
+    auto expand = [&](std::vector<std::uint32_t>& list) {
+      std::vector<std::uint32_t> out;
+      for (std::uint32_t i : list) {
+        if (i < n0 && is_parent[i]) {
+          for (int c = 0; c < nchild; ++c)
+            out.push_back(static_cast<std::uint32_t>(first_child[i] + static_cast<std::size_t>(c)));
+        } else {
+          out.push_back(i);
+        }
+      }
+      std::sort(out.begin(), out.end());
+      list = std::move(out);
+    };
+    for (BodyLoad& l : m.loads) expand(l.nodes);
+    // Prescribed motions follow their region: a child inside it is constrained, one outside not.
+    for (PrescribedMotion& pm : m.motions) {
+      expand(pm.nodes);
+      const double tol = 1e-9 * m.grid_spacing;
+      std::vector<std::uint32_t> kept;
+      for (std::uint32_t i : pm.nodes)
+        if (i < n0 || pm.region.contains({ns.x[0][i], ns.x[1][i], ns.x[2][i]}, tol))
+          kept.push_back(i);
+      pm.nodes = std::move(kept);
+    }
+    for (std::size_t i = n0; i < ns.size(); ++i) ns.flags[i] &= static_cast<std::uint8_t>(~kBoundary);
+    for (const PrescribedMotion& pm : m.motions)
+      for (std::uint32_t i : pm.nodes) ns.flags[i] |= kBoundary;
+  }
+
   // Interface-horizon correction: refined nodes next to a coarser node take m times the
   // distance to it, so their families lose no volume across the interface (thesis Fig. 3.10b).
   if (spec.interface_horizon) {
@@ -268,6 +303,52 @@ RefineStats refine_nodes(Model& m, std::vector<std::uint32_t> parents, const Ada
   momentum_and_kinetic(ns, st.momentum_after, st.kinetic_after);
   st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return st;
+}
+
+}  // namespace periadapt
+
+namespace periadapt {
+
+void apply_initial_refinement(Model& m, const AdaptSpec& spec) {
+  const NodeSet& ns = m.nodes;
+  int top = 0;
+  for (const auto& z : spec.initial) top = std::max(top, z.level);
+  for (int level = 0; level < top; ++level) {
+    std::vector<char> want(ns.size(), 0);
+    std::vector<std::uint32_t> ids;
+    for (std::size_t i = 0; i < ns.size(); ++i) {
+      if (!(ns.flags[i] & kActive) || ns.level[i] != level) continue;
+      const Vec3 p{ns.x[0][i], ns.x[1][i], ns.x[2][i]};
+      for (const auto& z : spec.initial)
+        if (z.level > level && z.region.contains(p, 1e-9 * ns.spacing[i])) {
+          ids.push_back(static_cast<std::uint32_t>(i));
+          break;
+        }
+    }
+    if (ids.empty()) continue;
+    // Visibility: whatever sees an identified node at its level is refined too.
+    std::vector<std::uint32_t> parents = ids;
+    {
+      double hmax = 0;
+      for (std::uint32_t i : ids) hmax = std::max(hmax, ns.horizon[i]);
+      CellGrid grid(ns.dim, {ns.x[0].data(), ns.x[1].data(), ns.x[2].data()}, ns.size(), hmax);
+      std::vector<char> mark(ns.size(), 0);
+      for (std::uint32_t i : ids) mark[i] = 1;
+      // Nodes with prescribed motions are pulled in only when inside a zone themselves.
+      if (spec.visibility)
+        for (std::uint32_t i : ids)
+          grid.for_each_within({ns.x[0][i], ns.x[1][i], ns.x[2][i]}, ns.horizon[i] * (1 + 1e-12),
+                               [&](std::uint32_t j, double) {
+                                 if ((ns.flags[j] & kActive) && !(ns.flags[j] & kBoundary) &&
+                                     ns.level[j] <= level)
+                                   mark[j] = 1;
+                               });
+      parents.clear();
+      for (std::size_t i = 0; i < ns.size(); ++i)
+        if (mark[i]) parents.push_back(static_cast<std::uint32_t>(i));
+    }
+    refine_nodes(m, parents, spec, true);
+  }
 }
 
 }  // namespace periadapt

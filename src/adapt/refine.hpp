@@ -33,6 +33,14 @@ double level_horizon(const Model& m, const AdaptSpec& spec, int level);
 // Sets micromodulus and critical stretch of node i from its current horizon.
 void scale_material_to_horizon(Model& m, std::size_t i);
 
-RefineStats refine_nodes(Model& m, std::vector<std::uint32_t> parents, const AdaptSpec& spec);
+// `inherit_boundary`: children of loaded or constrained parents join the parent's loads (same
+// force density, so the same total force) and prescribed motions (used by the initial refinement;
+// during a run such nodes are never refined).
+RefineStats refine_nodes(Model& m, std::vector<std::uint32_t> parents, const AdaptSpec& spec,
+                         bool inherit_boundary = false);
+
+// Refines the deck's initial regions level by level before the run (AGRS machinery applied to a
+// fixed zone, e.g. thesis 4.1 and 4.2), with the visibility criterion at every level.
+void apply_initial_refinement(Model& m, const AdaptSpec& spec);
 
 }  // namespace periadapt

@@ -38,7 +38,7 @@ RunResult run_static(const Deck& dk, const RunOptions& opt) {
   if (!opt.quiet)
     fmt::print("static solve: {} unknowns, {} nonzeros, {} ({} iterations), residual {:.3e} "
                "(relative {:.3e}), assembly {:.3f} s, solve {:.3f} s\n",
-               sr.unknowns, sr.nonzeros, sr.iterative ? (sr.symmetric ? "CG + incomplete Cholesky" : "BiCGSTAB") : sr.symmetric ? "sparse LDLT" : "sparse LU", sr.iterations,
+               sr.unknowns, sr.nonzeros, sr.iterative ? (sr.symmetric ? "CG (Jacobi)" : "BiCGSTAB") : sr.symmetric ? "sparse LDLT" : "sparse LU", sr.iterations,
                sr.residual_norm, rel, sr.assemble_seconds, sr.solve_seconds);
 
   std::vector<double> W;
@@ -48,7 +48,7 @@ RunResult run_static(const Deck& dk, const RunOptions& opt) {
   j["status"] = "completed";
   j["solver"] = {{"type", "static"},
                  {"bond_pairing", dk.dual_horizon ? "dual_horizon" : "source_horizon"},
-                 {"method", sr.iterative ? (sr.symmetric ? "cg_ichol" : "bicgstab") : sr.symmetric ? "sparse_ldlt" : "sparse_lu"},
+                 {"method", sr.iterative ? (sr.symmetric ? "cg_jacobi" : "bicgstab") : sr.symmetric ? "sparse_ldlt" : "sparse_lu"},
                  {"iterations", sr.iterations},
                  {"unknowns", sr.unknowns},
                  {"nonzeros", sr.nonzeros},

@@ -349,12 +349,24 @@ Deck parse_deck(const std::string& text, const std::string& name) {
   // --- adaptive grid refinement and scaling
   if (auto a = top.optional_section("adapt")) {
     AdaptSpec& ad = dk.adapt;
-    ad.enabled = true;
-    if (dk.solver != Deck::SolverType::Explicit)
-      a->fail("", "adaptive refinement works with the explicit solver only");
-    ad.max_level = static_cast<int>(a->integer("max_level", 1, [](long v) {
+    int initial_top = 0;
+    for (Section z : a->list("initial_refinement")) {
+      InitialRefinement ir;
+      ir.region = parse_region(z.section("region"), dk.dim);
+      ir.level = static_cast<int>(z.integer("level", std::nullopt, [](long v) {
+        return (v >= 1 && v <= 6) ? std::string() : std::string("must be in 1 ... 6");
+      }));
+      initial_top = std::max(initial_top, ir.level);
+      z.finish();
+      ad.initial.push_back(ir);
+    }
+    ad.visibility = a->boolean("visibility", true);
+    ad.max_level = static_cast<int>(a->integer("max_level", std::max(1, initial_top), [](long v) {
       return (v >= 1 && v <= 6) ? std::string() : std::string("must be in 1 ... 6");
     }));
+    if (initial_top > ad.max_level)
+      a->fail("max_level", "is below the level of an initial_refinement zone (" +
+                               std::to_string(initial_top) + ")");
     const std::string method = a->choice("method", {"B", "A"}, "B");
     if (method == "A")
       a->fail("method", "node generation method A is not available yet; use B (children at "
@@ -384,9 +396,13 @@ Deck parse_deck(const std::string& text, const std::string& name) {
                                  : std::string("a fraction of the maximum energy density in (0, 1]");
       });
     ad.damage_trigger = a->boolean("damage_trigger", false);
-    if (!ad.energy_fraction && !ad.damage_trigger)
-      a->fail("", "give at least one trigger: energy_trigger (fraction of W_max) or "
-                  "damage_trigger: true");
+    ad.enabled = ad.energy_fraction || ad.damage_trigger;
+    if (!ad.enabled && ad.initial.empty())
+      a->fail("", "give at least one trigger (energy_trigger: fraction of W_max, damage_trigger: "
+                  "true) or an initial_refinement zone");
+    if (ad.enabled && dk.solver != Deck::SolverType::Explicit)
+      a->fail("", "refinement triggers work with the explicit solver only; static and relaxation "
+                  "runs take initial_refinement zones");
     if (a->has("region")) ad.region = parse_region(a->section("region"), dk.dim);
     a->finish();
   }

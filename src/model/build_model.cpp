@@ -1,5 +1,6 @@
 #include "model/build_model.hpp"
 
+#include "adapt/refine.hpp"
 #include "discretize/surface_correction.hpp"
 
 #include <algorithm>
@@ -125,6 +126,7 @@ Model build_model(const Deck& dk) {
     pm.kind = ms.kind == MotionSpec::Kind::Velocity ? PrescribedMotion::Kind::Velocity
                                                     : PrescribedMotion::Kind::Displacement;
     pm.nodes = select(ns, ms.region, tol);
+    pm.region = ms.region;
     if (pm.nodes.empty())
       throw DeckError(dk.file, 0, 0, ms.name + ".region", "the region selects no nodes");
     for (int d = 0; d < 3; ++d)
@@ -151,6 +153,7 @@ Model build_model(const Deck& dk) {
         throw DeckError(dk.file, 0, 0, "initial_conditions",
                         "an initial field is not finite at node " + std::to_string(i));
   ns.sync_all_current();
+  if (!dk.adapt.initial.empty()) apply_initial_refinement(m, dk.adapt);
   return m;
 }
 

@@ -9,6 +9,7 @@
 
 #include "core/bond_families.hpp"
 #include "core/expression.hpp"
+#include "core/geometry.hpp"
 #include "core/node_set.hpp"
 #include "discretize/families.hpp"
 #include "discretize/precrack.hpp"
@@ -29,6 +30,7 @@ struct PrescribedMotion {
   std::string name;
   std::vector<std::uint32_t> nodes;
   std::array<std::optional<Expression>, 3> component;  // unset: free component
+  Shape region;  // where it applies (children created inside it inherit it)
 };
 
 struct MaterialLaw {

@@ -144,6 +144,10 @@ StaticResult solve_linear_static(Model& m, const std::vector<DisplacementConstra
     fixed[static_cast<std::size_t>(D) * c.node + static_cast<std::size_t>(c.component)] = 1;
     ufix[D * c.node + c.component] = c.value;
   }
+  // Deactivated parents (refined grids) are not part of the model: identity rows, u = 0.
+  for (std::size_t i = 0; i < n; ++i)
+    if (!(ns.flags[i] & kActive))
+      for (int d = 0; d < D; ++d) fixed[static_cast<std::size_t>(D) * i + d] = 1;
   // Move known displacements to the right-hand side; constrained rows become identity rows.
   for (Eigen::Index r = 0; r < K.outerSize(); ++r) {
     const bool row_fixed = fixed[static_cast<std::size_t>(r)];
@@ -184,10 +188,10 @@ StaticResult solve_linear_static(Model& m, const std::vector<DisplacementConstra
   const double asym = (K - Kt).norm();
   res.symmetric = asym <= 1e-12 * K.norm();
   if (res.symmetric && rows > opt.cholesky_limit) {
-    // Large symmetric systems: conjugate gradients with an incomplete Cholesky preconditioner
-    // beat the simplicial factorization by far in time and memory.
+    // Large symmetric systems: Jacobi-preconditioned conjugate gradients (measured faster here
+    // than incomplete Cholesky, and far faster than the simplicial factorization).
     Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper,
-                             Eigen::IncompleteCholesky<double>>
+                             Eigen::DiagonalPreconditioner<double>>
         cg;
     Eigen::SparseMatrix<double> Kc = K;
     cg.setTolerance(opt.iterative_tolerance);
@@ -212,6 +216,22 @@ StaticResult solve_linear_static(Model& m, const std::vector<DisplacementConstra
       throw SingularSystem("singular system: the sparse Cholesky factorization failed; check that "
                            "constraints prevent rigid-body motion and that no part of the body "
                            "is disconnected");
+  }
+  if (!solved && !res.symmetric && rows > opt.lu_limit) {
+    // Large general systems: Jacobi-preconditioned BiCGSTAB (cheaper here than ILUT).
+    Eigen::BiCGSTAB<Eigen::SparseMatrix<double>, Eigen::DiagonalPreconditioner<double>> it;
+    Eigen::SparseMatrix<double> Kc = K;
+
+
+    it.setTolerance(opt.iterative_tolerance);
+    it.setMaxIterations(static_cast<Eigen::Index>(std::max<std::size_t>(1000, 4 * rows)));
+    it.compute(Kc);
+    if (it.info() == Eigen::Success) {
+      u = it.solve(f);
+      res.iterative = true;
+      res.iterations = static_cast<int>(it.iterations());
+      solved = it.info() == Eigen::Success && u.allFinite();
+    }
   }
   if (!solved && rows <= opt.direct_limit) {
     Eigen::SparseMatrix<double> Kc = K;

@@ -31,6 +31,7 @@ struct StaticOptions {
   BondPairing pairing = BondPairing::SourceHorizon;
   std::size_t direct_limit = 2'000'000;  // unknowns up to which the sparse LU is used
   std::size_t cholesky_limit = 40'000;   // symmetric systems above this use preconditioned CG
+  std::size_t lu_limit = 40'000;         // general systems above this use BiCGSTAB (Jacobi)
   double iterative_tolerance = 1e-12;    // relative residual of the iterative solvers
 };
 

@@ -10,6 +10,7 @@
 #include "app/static_run.hpp"
 #include "io/deck.hpp"
 #include "io/line_plot.hpp"
+#include "studies/plate_error_profiles.hpp"
 
 namespace periadapt {
 
@@ -35,12 +36,13 @@ damage: {enabled: false}
 solver: {type: static}
 )";
 
-struct Profiles {
-  std::vector<double> x, ex, y, ey;  // positions and relative errors (%)
-  double mean_ex = 0, mean_ey = 0, l2 = 0;
-};
+double mean(const std::vector<double>& v) {
+  double s = 0;
+  for (double e : v) s += e;
+  return v.empty() ? 0.0 : s / static_cast<double>(v.size());
+}
 
-Profiles solve(bool correction) {
+PlateErrors solve(bool correction) {
   std::string text = kDeck;
   text.replace(text.find("SC"), 2, correction ? "true" : "false");
   const Deck dk = parse_deck(text, "static-plate-2d (built-in)");
@@ -48,39 +50,20 @@ Profiles solve(bool correction) {
   ro.write_files = false;
   ro.quiet = true;
   const RunResult r = run_static(dk, ro);
-  const NodeSet& ns = r.model.nodes;
-  const double E = 200e9, s = 200e6, nu = 1.0 / 3.0, tol = 1e-9;
-  Profiles p;
-  double num = 0, den = 0;
-  std::vector<std::pair<double, double>> hx, vy;
-  for (std::size_t i = 0; i < ns.size(); ++i) {
-    const double X = ns.x[0][i], Y = ns.x[1][i];
-    const double ux = s * X / E, uy = -nu * s * Y / E;
-    num += std::pow(ns.u[0][i] - ux, 2) + std::pow(ns.u[1][i] - uy, 2);
-    den += ux * ux + uy * uy;
-    // Profiles on the positive half-axes, the constrained node at the origin excluded.
-    if (std::abs(Y) < tol && X > tol) hx.emplace_back(X, 100 * std::abs(ns.u[0][i] - ux) / std::abs(ux));
-    if (std::abs(X) < tol && Y > tol) vy.emplace_back(Y, 100 * std::abs(ns.u[1][i] - uy) / std::abs(uy));
-  }
-  std::sort(hx.begin(), hx.end());
-  std::sort(vy.begin(), vy.end());
-  for (auto [a, e] : hx) p.x.push_back(a), p.ex.push_back(e), p.mean_ex += e / hx.size();
-  for (auto [a, e] : vy) p.y.push_back(a), p.ey.push_back(e), p.mean_ey += e / vy.size();
-  p.l2 = 100 * std::sqrt(num / den);
-  return p;
+  return plate_errors(r.model.nodes, 200e6, 200e9, 1.0 / 3.0);
 }
 
 }  // namespace
 
 int run_static_plate_study(const std::string& out_dir) {
-  const Profiles plain = solve(false), corrected = solve(true);
+  const PlateErrors plain = solve(false), corrected = solve(true);
   fmt::print("Thesis 4.1, uniform grid (dX = 10 mm, delta = 30.15 mm, IPA-Hybrid areas): errors vs "
              "Eq. 4.1\n");
   fmt::print("{:<26} {:>16} {:>16} {:>12}\n", "", "mean |e(u_x)| %", "mean |e(u_y)| %", "L2 (Eq 4.2) %");
   fmt::print("{:<26} {:>16.3f} {:>16.3f} {:>12.3f}   (thesis: about 5% on the coarse side)\n",
-             "no surface correction", plain.mean_ex, plain.mean_ey, plain.l2);
+             "no surface correction", plain.mean_ex(0, 1), mean(plain.ey), plain.l2);
   fmt::print("{:<26} {:>16.3f} {:>16.3f} {:>12.3f}   (thesis: about 2%)\n",
-             "surface correction", corrected.mean_ex, corrected.mean_ey, corrected.l2);
+             "surface correction", corrected.mean_ex(0, 1), mean(corrected.ey), corrected.l2);
   if (out_dir.empty()) return 0;
   std::filesystem::create_directories(out_dir);
   std::ofstream csv(out_dir + "/static_plate_2d_errors.csv");

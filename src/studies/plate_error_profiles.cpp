@@ -1,0 +1,48 @@
+#include "studies/plate_error_profiles.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+namespace periadapt {
+
+double PlateErrors::mean_ex(double lo, double hi) const {
+  double s = 0;
+  int n = 0;
+  for (std::size_t k = 0; k < x.size(); ++k)
+    if (x[k] >= lo && x[k] <= hi) s += ex[k], ++n;
+  return n ? s / n : 0.0;
+}
+
+double PlateErrors::max_ex(double lo, double hi) const {
+  double m = 0;
+  for (std::size_t k = 0; k < x.size(); ++k)
+    if (x[k] >= lo && x[k] <= hi) m = std::max(m, ex[k]);
+  return m;
+}
+
+PlateErrors plate_errors(const NodeSet& ns, double p, double E, double nu) {
+  PlateErrors r;
+  double num = 0, den = 0;
+  std::vector<std::pair<double, double>> hx, vy;
+  for (std::size_t i = 0; i < ns.size(); ++i) {
+    if (!(ns.flags[i] & kActive)) continue;
+    const double X = ns.x[0][i], Y = ns.x[1][i], h = 0.5 * ns.spacing[i] * (1 + 1e-9);
+    const double ux = p * X / E, uy = -nu * p * Y / E;
+    num += std::pow(ns.u[0][i] - ux, 2) + std::pow(ns.u[1][i] - uy, 2);
+    den += ux * ux + uy * uy;
+    const double tiny = 1e-9 * ns.spacing[i];
+    if (std::abs(Y) <= h && std::abs(X) > tiny)
+      hx.emplace_back(X, 100 * std::abs(ns.u[0][i] - ux) / std::abs(ux));
+    if (std::abs(X) <= h && std::abs(Y) > tiny)
+      vy.emplace_back(Y, 100 * std::abs(ns.u[1][i] - uy) / std::abs(uy));
+  }
+  std::sort(hx.begin(), hx.end());
+  std::sort(vy.begin(), vy.end());
+  for (auto [a, e] : hx) r.x.push_back(a), r.ex.push_back(e);
+  for (auto [a, e] : vy) r.y.push_back(a), r.ey.push_back(e);
+  r.l2 = den > 0 ? 100 * std::sqrt(num / den) : 0.0;
+  return r;
+}
+
+}  // namespace periadapt

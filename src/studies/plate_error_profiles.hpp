@@ -1,0 +1,23 @@
+#pragma once
+// Errors of a solved plate in uniaxial tension against the classical field (thesis Eq. 4.1:
+// u_x = p x / E, u_y = -nu p y / E) along the centre lines and in the L2 norm (Eq. 4.2).
+// A node belongs to the horizontal (vertical) centre line when |y| (|x|) is at most half its
+// spacing: refined zones of method B have no node on the axis itself.
+#include <vector>
+
+#include "core/node_set.hpp"
+
+namespace periadapt {
+
+struct PlateErrors {
+  std::vector<double> x, ex;  // horizontal line: x and |e(u_x)| in %, x != 0, sorted
+  std::vector<double> y, ey;  // vertical line: y and |e(u_y)| in %, y != 0, sorted
+  double l2 = 0;              // Eq. 4.2, in %
+  // Mean |e(u_x)| over x in [lo, hi] (%).
+  double mean_ex(double lo, double hi) const;
+  double max_ex(double lo, double hi) const;
+};
+
+PlateErrors plate_errors(const NodeSet& nodes, double p, double E, double nu);
+
+}  // namespace periadapt
