@@ -26,9 +26,12 @@ std::vector<char> refinable_nodes(const Model& m, const AdaptSpec& spec) {
 std::vector<std::uint32_t> energy_trigger(const Model& m, const std::vector<double>& W,
                                           double alpha, const std::vector<char>& refinable) {
   const NodeSet& ns = m.nodes;
+  // W_max over the nodes that can still be refined or are already refined: nodes that never
+  // refine (loaded, prescribed motion) can carry boundary-layer energies (an impact, a clamp)
+  // that would otherwise switch the trigger off for the whole body.
   double wmax = 0;
   for (std::size_t i = 0; i < ns.size(); ++i)
-    if (ns.flags[i] & kActive) wmax = std::max(wmax, W[i]);
+    if ((ns.flags[i] & kActive) && !(ns.flags[i] & kBoundary)) wmax = std::max(wmax, W[i]);
   std::vector<std::uint32_t> out;
   if (!(wmax > 0)) return out;
   for (std::size_t i = 0; i < ns.size(); ++i)

@@ -14,7 +14,8 @@ namespace periadapt {
 // Refinable flags for every node (see above).
 std::vector<char> refinable_nodes(const Model& m, const AdaptSpec& spec);
 
-// Energy trigger: refinable nodes with W_i >= alpha max_j W_j (max over active nodes).
+// Energy trigger: refinable nodes with W_i >= alpha max_j W_j (max over the active nodes without
+// prescribed motion, whose boundary-layer energies would switch the trigger off).
 std::vector<std::uint32_t> energy_trigger(const Model& m, const std::vector<double>& W,
                                           double alpha, const std::vector<char>& refinable);
 

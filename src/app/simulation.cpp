@@ -308,6 +308,14 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
                                                      : nlohmann::json(nullptr);
     if (tracker.branching_point())
       c["branch_length_m"] = norm(sub(*tracker.branching_point(), tip.origin));
+    if (!tracker.path().empty()) {
+      // Angle of the segment from the initial tip to the last tip, from the tracking direction
+      // (counter-clockwise positive): the path angle of a straight crack.
+      const Vec3 r = sub(tracker.path().back().position, tip.origin);
+      const Vec3 nrm{-tip.direction[1], tip.direction[0], 0.0};
+      if (norm(r) > tip.advance)
+        c["path_angle_deg"] = std::atan2(dot(r, nrm), dot(r, tip.direction)) * 180.0 / M_PI;
+    }
     c["mean_speed_m_s"] = tracker.mean_speed();
     c["max_speed_m_s"] = tracker.max_speed();
     c["speed_window_s"] = tip.window;
