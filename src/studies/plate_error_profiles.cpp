@@ -21,6 +21,32 @@ double PlateErrors::max_ex(double lo, double hi) const {
   return m;
 }
 
+std::string tension_plate_deck(bool surface_correction, const std::string& bond_pairing,
+                               int refined_level) {
+  std::string d = R"(
+model: {dimension: 2, plane: stress, thickness: 0.01}
+material: {youngs_modulus: 200.0e9, density: 7850.0}
+discretization:
+  spacing: 0.01
+  horizon: 0.03015
+  registration: node_on_edge
+  quadrature: ipa_hybrid
+  surface_correction: )" + std::string(surface_correction ? "true" : "false") + R"(
+  body: {box: {min: [-0.5, -0.25], max: [0.5, 0.25]}}
+loads:
+  - {name: right, type: traction, region: {box: {min: [0.5, -0.25], max: [0.5, 0.25]}}, value: [200.0e6, 0]}
+  - {name: left, type: traction, region: {box: {min: [-0.5, -0.25], max: [-0.5, 0.25]}}, value: [-200.0e6, 0]}
+boundary_conditions:
+  - {name: vertical axis, region: {box: {min: [0, -0.25], max: [0, 0.25]}}, displacement: [0, null]}
+  - {name: horizontal axis, region: {box: {min: [-0.5, 0], max: [0.5, 0]}}, displacement: [null, 0]}
+damage: {enabled: false}
+solver: {type: static, bond_pairing: )" + bond_pairing + "}\n";
+  if (refined_level > 0)
+    d += "adapt:\n  scaling: delta\n  initial_refinement: [{region: {box: {min: [-0.5, -0.25], "
+         "max: [-0.001, 0.25]}}, level: " + std::to_string(refined_level) + "}]\n";
+  return d;
+}
+
 PlateErrors plate_errors(const NodeSet& ns, double p, double E, double nu) {
   PlateErrors r;
   double num = 0, den = 0;

@@ -16,25 +16,6 @@ namespace periadapt {
 
 namespace {
 
-const char* kDeck = R"(
-model: {dimension: 2, plane: stress, thickness: 0.01}
-material: {youngs_modulus: 200.0e9, density: 7850.0}
-discretization:
-  spacing: 0.01
-  horizon: 0.03015
-  registration: node_on_edge
-  quadrature: ipa_hybrid
-  surface_correction: SC
-  body: {box: {min: [-0.5, -0.25], max: [0.5, 0.25]}}
-loads:
-  - {name: right, type: traction, region: {box: {min: [0.5, -0.25], max: [0.5, 0.25]}}, value: [200.0e6, 0]}
-  - {name: left, type: traction, region: {box: {min: [-0.5, -0.25], max: [-0.5, 0.25]}}, value: [-200.0e6, 0]}
-boundary_conditions:
-  - {name: vertical axis, region: {box: {min: [0, -0.25], max: [0, 0.25]}}, displacement: [0, null]}
-  - {name: horizontal axis, region: {box: {min: [-0.5, 0], max: [0.5, 0]}}, displacement: [null, 0]}
-damage: {enabled: false}
-solver: {type: static}
-)";
 
 double mean(const std::vector<double>& v) {
   double s = 0;
@@ -43,9 +24,8 @@ double mean(const std::vector<double>& v) {
 }
 
 PlateErrors solve(bool correction) {
-  std::string text = kDeck;
-  text.replace(text.find("SC"), 2, correction ? "true" : "false");
-  const Deck dk = parse_deck(text, "static-plate-2d (built-in)");
+  const Deck dk =
+      parse_deck(tension_plate_deck(correction, "source_horizon", 0), "static-plate-2d (built-in)");
   RunOptions ro;
   ro.write_files = false;
   ro.quiet = true;

@@ -14,29 +14,6 @@ namespace periadapt {
 
 namespace {
 
-// The uniform plate of thesis Fig. 4.1 with an initial refinement of x < 0.
-const char* kDeck = R"(
-model: {dimension: 2, plane: stress, thickness: 0.01}
-material: {youngs_modulus: 200.0e9, density: 7850.0}
-discretization:
-  spacing: 0.01
-  horizon: 0.03015
-  registration: node_on_edge
-  quadrature: ipa_hybrid
-  surface_correction: SC
-  body: {box: {min: [-0.5, -0.25], max: [0.5, 0.25]}}
-loads:
-  - {name: right, type: traction, region: {box: {min: [0.5, -0.25], max: [0.5, 0.25]}}, value: [200.0e6, 0]}
-  - {name: left, type: traction, region: {box: {min: [-0.5, -0.25], max: [-0.5, 0.25]}}, value: [-200.0e6, 0]}
-boundary_conditions:
-  - {name: vertical axis, region: {box: {min: [0, -0.25], max: [0, 0.25]}}, displacement: [0, null]}
-  - {name: horizontal axis, region: {box: {min: [-0.5, 0], max: [0.5, 0]}}, displacement: [null, 0]}
-damage: {enabled: false}
-adapt:
-  scaling: delta
-  initial_refinement: [{region: {box: {min: [-0.5, -0.25], max: [-0.001, 0.25]}}, level: LEVEL}]
-solver: {type: static, bond_pairing: PAIRING}
-)";
 
 struct Variant {
   const char* name;
@@ -62,11 +39,8 @@ int run_static_plate_refined_study(const std::string& out_dir) {
   for (int level = 1; level <= 3; ++level) {
     std::vector<PlotSeries> series;
     for (const Variant& v : variants) {
-      std::string text = kDeck;
-      text.replace(text.find("SC"), 2, v.correction ? "true" : "false");
-      text.replace(text.find("LEVEL"), 5, std::to_string(level));
-      text.replace(text.find("PAIRING"), 7, v.pairing);
-      const Deck dk = parse_deck(text, "static-plate-refined (built-in)");
+      const Deck dk = parse_deck(tension_plate_deck(v.correction, v.pairing, level),
+                                 "static-plate-refined (built-in)");
       RunOptions ro;
       ro.write_files = false;
       ro.quiet = true;
