@@ -3,7 +3,7 @@
 #include <fmt/core.h>
 
 #include "adapt/triggers.hpp"
-#include "material/pmb.hpp"
+#include "solver/internal_forces.hpp"
 #include "solver/stable_time_step.hpp"
 
 namespace periadapt {
@@ -70,7 +70,7 @@ bool Adaptor::step() {
     return false;
   }
   if (spec_.energy_fraction && vv_.step_count() % spec_.check_every == 0) {
-    if (W_.size() != ns.size()) pmb_energy_density(ns, m_.bonds, m_.material.shape, W_);
+    if (W_.size() != ns.size()) energy_density(m_, W_);
     const auto ids = energy_trigger(m_, W_, *spec_.energy_fraction, refinable_nodes(m_, spec_));
     if (!ids.empty()) refine(ids, "energy");
   }

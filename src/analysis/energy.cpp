@@ -1,6 +1,6 @@
 #include "analysis/energy.hpp"
 
-#include "material/pmb.hpp"
+#include "solver/internal_forces.hpp"
 
 namespace periadapt {
 
@@ -18,7 +18,7 @@ double kinetic_energy(const NodeSet& ns) {
 }
 
 double strain_energy(const Model& model, std::vector<double>& W) {
-  pmb_energy_density(model.nodes, model.bonds, model.material.shape, W);
+  energy_density(model, W);
   double e = 0;
   const std::size_t n = W.size();
 #pragma omp parallel for reduction(+ : e) schedule(static)

@@ -31,11 +31,11 @@ int check(const std::string& path) {
   const TimeStepChoice ts = is_static ? TimeStepChoice{0, 0, 0, 0} : choose_time_step(dk, m);
   const MaterialLaw& mat = m.material;
   fmt::print("deck            {}\n", path);
-  fmt::print("model           {}D PMB{}\n", dk.dim,
+  fmt::print("model           {}D {}{}\n", dk.dim, dk.formulation == "lps" ? "LPS (state-based)" : "PMB",
              dk.dim == 2 ? (dk.plane == PlaneCondition::Stress ? ", plane stress" : ", plane strain") : "");
   if (dk.dim < 3) fmt::print("thickness/area  {:.6g}\n", dk.thickness);
-  fmt::print("material        {}: E = {:.6g} Pa, rho = {:.6g} kg/m^3, nu = {:.6g} (fixed by PMB)\n",
-             mat.name, mat.E, mat.rho, mat.nu);
+  fmt::print("material        {}: E = {:.6g} Pa, rho = {:.6g} kg/m^3, nu = {:.6g}{}\n",
+             mat.name, mat.E, mat.rho, mat.nu, mat.lps ? "" : " (fixed by PMB)");
   fmt::print("micromodulus    {} shape, c0 = {:.6e}\n", to_string(mat.shape), mat.c0);
   if (mat.G0 > 0) fmt::print("fracture energy G0 = {:.6g} J/m^2\n", mat.G0);
   fmt::print("critical stretch s0 = {:.6e}{}\n", mat.s0, dk.damage ? "" : " (damage disabled)");

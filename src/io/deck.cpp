@@ -147,7 +147,9 @@ Deck parse_deck(const std::string& text, const std::string& name) {
     }
     dk.thickness = m.number("thickness", 1.0, positive());
     if (dk.dim == 3 && m.has("thickness")) m.fail("thickness", "3D models have no thickness key");
-    dk.formulation = m.choice("formulation", {"pmb"}, "pmb");
+    dk.formulation = m.choice("formulation", {"pmb", "lps"}, "pmb");
+    if (dk.formulation == "lps" && dk.dim == 1)
+      m.fail("formulation", "the state-based LPS model is for 2D and 3D; use pmb in 1D");
     m.finish();
   }
   // --- material
@@ -157,7 +159,12 @@ Deck parse_deck(const std::string& text, const std::string& name) {
     dk.E = s.number("youngs_modulus", std::nullopt, positive());
     dk.rho = s.number("density", std::nullopt, positive());
     const double nu_bb = bond_based_poisson(dk.dim, dk.plane);
-    if (s.has("poisson_ratio")) {
+    if (dk.formulation == "lps") {
+      dk.nu = s.number("poisson_ratio", std::nullopt, [](double v) {
+        return (v > -1.0 && v < 0.5) ? std::string()
+                                     : std::string("must be in (-1, 0.5) for the LPS model");
+      });
+    } else if (s.has("poisson_ratio")) {
       dk.nu = s.number("poisson_ratio");
       if (std::abs(*dk.nu - nu_bb) > 1e-3)
         s.fail("poisson_ratio", "the bond-based PMB model fixes Poisson's ratio to " +

@@ -46,10 +46,20 @@ Model build_model(const Deck& dk) {
   mat.shape = dk.shape;
   mat.plane = dk.plane;
   mat.thickness = dk.thickness;
-  mat.c0 = micromodulus_c0(dk.dim, dk.plane, dk.shape, dk.E, dk.horizon, dk.thickness);
+  mat.bb_equivalent_E = dk.E;
+  if (dk.formulation == "lps") {
+    mat.lps = true;
+    mat.nu = *dk.nu;
+    mat.lps_constants = lps_constants(dk.dim, dk.plane, dk.E, mat.nu);
+    mat.bb_equivalent_E = p_wave_modulus(dk.dim, dk.plane, dk.E, mat.nu) /
+                          p_wave_modulus(dk.dim, dk.plane, 1.0, bond_based_poisson(dk.dim, dk.plane));
+  }
+  mat.c0 = micromodulus_c0(dk.dim, dk.plane, dk.shape, mat.bb_equivalent_E, dk.horizon, dk.thickness);
   if (dk.G0) {
     mat.G0 = *dk.G0;
-    mat.s0 = critical_stretch_from_g0(dk.dim, dk.shape, mat.c0, dk.horizon, dk.thickness, *dk.G0);
+    mat.s0 = mat.lps ? lps_critical_stretch(dk.dim, mat.lps_constants, dk.horizon, *dk.G0)
+                     : critical_stretch_from_g0(dk.dim, dk.shape, mat.c0, dk.horizon,
+                                                dk.thickness, *dk.G0);
   } else if (dk.s0) {
     mat.s0 = *dk.s0;
   } else {

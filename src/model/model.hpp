@@ -13,6 +13,7 @@
 #include "core/node_set.hpp"
 #include "discretize/families.hpp"
 #include "discretize/precrack.hpp"
+#include "material/lps.hpp"
 #include "material/micromodulus.hpp"
 #include "model/time_function.hpp"
 
@@ -43,6 +44,12 @@ struct MaterialLaw {
   InfluenceShape shape = InfluenceShape::Constant;
   PlaneCondition plane = PlaneCondition::None;
   double thickness = 1.0;
+  // Ordinary state-based LPS instead of bond-based PMB (any Poisson ratio).
+  bool lps = false;
+  LpsConstants lps_constants;
+  // Young's modulus of the bond-based material with the same P-wave modulus: its micromodulus
+  // (stored per node) drives the stable time step and the relaxation masses for both models.
+  double bb_equivalent_E = 0;
 };
 
 struct Model {
@@ -61,6 +68,7 @@ struct Model {
   std::vector<PreCrack> cracks;
   double lattice_rotation = 0.0;  // radians (2D grids): orientation of children offsets
   bool surface_correction = false;
+  mutable LpsScratch lps_scratch;  // per-node weighted volume and dilatation (LPS)
 };
 
 }  // namespace periadapt

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "material/pmb.hpp"
+#include "solver/internal_forces.hpp"
 
 namespace periadapt {
 
@@ -64,7 +65,7 @@ bool run_dynamic_relaxation(Model& m, const RelaxationOptions& opt,
       double res = INFINITY, fnorm_ref = 0;
       long it = 0;
       for (; it < opt.max_iterations; ++it) {
-        pmb_forces(ns, m.bonds, m.material.shape, false);
+        internal_forces(m, false);
         // Residual and the Rayleigh-quotient damping from the change of force.
         double num = 0, den = 0, fn = 0;
         for (std::size_t i = 0; i < n; ++i) {
@@ -111,7 +112,7 @@ bool run_dynamic_relaxation(Model& m, const RelaxationOptions& opt,
         return false;
       }
       if (!m.damage_enabled) break;
-      const std::size_t broke = pmb_forces(ns, m.bonds, m.material.shape, true).newly_broken;
+      const std::size_t broke = internal_forces(m, true);
       rep.newly_broken += broke;
       if (broke == 0) break;
     }

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "material/pmb.hpp"
+#include "solver/internal_forces.hpp"
 
 namespace periadapt {
 
@@ -60,9 +60,8 @@ void VelocityVerlet::impose_motions(double t, bool velocities_only) {
 
 void VelocityVerlet::compute_accelerations() {
   NodeSet& ns = m_.nodes;
-  const PmbStepStats st = pmb_forces(ns, m_.bonds, m_.material.shape, m_.damage_enabled,
-                                     undo_enabled_ ? &saved_.broken_log : nullptr, energy_out_);
-  broken_total_ += st.newly_broken;
+  broken_total_ += internal_forces(m_, m_.damage_enabled,
+                                   undo_enabled_ ? &saved_.broken_log : nullptr, energy_out_);
   bond_evals_ += static_cast<double>(m_.bonds.num_bonds());
   const std::size_t n = ns.size();
   const int dim = ns.dim;

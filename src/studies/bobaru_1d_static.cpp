@@ -95,7 +95,7 @@ Model bar_model(const BarSpec& s, std::vector<double>& xs, std::vector<double>& 
   };
   for (int sign : {+1, -1}) {
     BodyLoad l;
-    l.name = sign > 0 ? "+a" : "-a";
+    l.name.append(sign > 0 ? "+a" : "-a");  // (append: GCC 12 warns falsely on assignment)
     const std::uint32_t i = node_at(sign * s.a);
     l.nodes = {i};
     l.density = {sign / cells[i], 0, 0};  // unit point load over the node's length (A = 1)

@@ -1,0 +1,51 @@
+#pragma once
+// Ordinary state-based peridynamics, the linear peridynamic solid (LPS; Silling et al. 2007; thesis
+// 2.1, Eqs. 2.5-2.10), for 3D and 2D plane stress / plane strain with any Poisson ratio:
+//   m_i     = sum_j w x^2 beta V_j                                 (weighted volume, Eq. 2.9)
+//   theta_i = (D / m_i) sum_j w x e beta V_j,  e = |Y| - x           (dilatation, D = 2 or 3)
+//   t_ij    = (D kappa theta_i / m_i) w x + (alpha / m_i) w (e - theta_i x / D)
+//   f_i     = sum_j (t_ij + t_ji) beta V_j Y/|Y|
+// with 3D: kappa = K, alpha = 15 mu; 2D: kappa = the in-plane bulk modulus (plane strain
+// E / (2 (1 + nu)(1 - 2 nu)), plane stress E / (2 (1 - nu))), alpha = 8 mu. With this 2D
+// dilatation the deviatoric part is orthogonal to x, so the force state needs no extra term (the
+// thesis' Eq. 2.10 sign question does not arise); the calibration is checked against classical
+// energy densities in the tests. w = influence shape of the source node's horizon; a bond breaks
+// when e / x exceeds the source node's critical stretch.
+#include <cstdint>
+#include <vector>
+
+#include "core/bond_families.hpp"
+#include "core/node_set.hpp"
+#include "material/micromodulus.hpp"
+
+namespace periadapt {
+
+struct LpsConstants {
+  double kappa = 0;  // bulk modulus of the dimension/plane condition
+  double mu = 0;     // shear modulus
+  int D = 3;         // 2 or 3: dilatation factor
+  double alpha = 15; // 15 (3D) or 8 (2D)
+};
+
+LpsConstants lps_constants(int dim, PlaneCondition plane, double E, double nu);
+
+// Critical stretch for a fracture energy G0 (Madenci & Oterkus 2014, OSB with w = 1):
+// 3D s0 = sqrt(G0 / ((3 mu + (3/4)^4 (K - 5 mu / 3)) delta)),
+// 2D s0 = sqrt(G0 / ((6 mu / pi + 16 / (9 pi^2) (kappa - 2 mu)) delta)).
+double lps_critical_stretch(int dim, const LpsConstants& c, double delta, double G0);
+
+// Per-node scratch of the two-pass kernel.
+struct LpsScratch {
+  std::vector<double> m, theta;
+};
+
+// Force densities (and bond breaking, broken-bond log, energy density as for PMB).
+std::size_t lps_forces(NodeSet& nodes, BondFamilies& bonds, InfluenceShape shape,
+                       const LpsConstants& c, bool allow_breaking, LpsScratch& scratch,
+                       std::vector<std::uint64_t>* broken_log, std::vector<double>* W);
+
+// Strain-energy density W_i = kappa theta^2 / 2 + (alpha mu / (2 m)) sum w (e^d)^2 beta V.
+void lps_energy_density(const NodeSet& nodes, const BondFamilies& bonds, InfluenceShape shape,
+                        const LpsConstants& c, LpsScratch& scratch, std::vector<double>& W);
+
+}  // namespace periadapt

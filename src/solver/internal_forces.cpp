@@ -1,0 +1,23 @@
+#include "solver/internal_forces.hpp"
+
+#include "material/pmb.hpp"
+
+namespace periadapt {
+
+std::size_t internal_forces(Model& m, bool allow_breaking, std::vector<std::uint64_t>* log,
+                            std::vector<double>* W) {
+  if (m.material.lps)
+    return lps_forces(m.nodes, m.bonds, m.material.shape, m.material.lps_constants, allow_breaking,
+                      m.lps_scratch, log, W);
+  return pmb_forces(m.nodes, m.bonds, m.material.shape, allow_breaking, log, W).newly_broken;
+}
+
+void energy_density(const Model& m, std::vector<double>& W) {
+  if (m.material.lps)
+    lps_energy_density(m.nodes, m.bonds, m.material.shape, m.material.lps_constants,
+                       m.lps_scratch, W);
+  else
+    pmb_energy_density(m.nodes, m.bonds, m.material.shape, W);
+}
+
+}  // namespace periadapt
