@@ -1,5 +1,6 @@
 #include "material/lps.hpp"
 
+#include <array>
 #include <cmath>
 
 namespace periadapt {
@@ -27,36 +28,166 @@ double lps_critical_stretch(int dim, const LpsConstants& c, double delta, double
 
 namespace {
 
-inline double omega(InfluenceShape s, double t) { return influence(s, t < 1.0 ? t : 1.0); }
+template <InfluenceShape S>
+inline double omega(double t) {
+  t = t < 1.0 ? t : 1.0;
+  if constexpr (S == InfluenceShape::Constant) return 1.0;
+  else if constexpr (S == InfluenceShape::Triangular) return 1.0 - t;
+  else return t;
+}
 
-// Pass 1: weighted volume (all bonds) and dilatation (intact bonds) of every active node.
-void dilatation(const NodeSet& ns, const BondFamilies& bf, InfluenceShape shape, int D,
-                LpsScratch& sc) {
+// Pass 1: weighted volume (all bonds) and dilatation (intact bonds) of every active node, and
+// the packed per-node factors of the force pass. Branch-free inner loop (vectorizes).
+template <int D, InfluenceShape S>
+void dilatation(const NodeSet& ns, const BondFamilies& bf, const LpsConstants& c, LpsScratch& sc) {
   const std::size_t n = ns.size();
   sc.m.assign(n, 0.0);
   sc.theta.assign(n, 0.0);
+  sc.packed.assign(4 * n, 0.0);
   const double* yp = ns.cur.data();
+  const std::uint32_t* nbr = bf.neighbor.data();
+  const double* inv_len = bf.inv_length.data();
+  const float* beta = bf.beta.data();
 #pragma omp parallel for schedule(dynamic, 512)
   for (std::size_t i = 0; i < n; ++i) {
     if (!(ns.flags[i] & kActive)) continue;
     const double inv_delta = 1.0 / ns.horizon[i];
+    const double yi0 = yp[4 * i], yi1 = D > 1 ? yp[4 * i + 1] : 0.0, yi2 = D > 2 ? yp[4 * i + 2] : 0.0;
     double m = 0, th = 0;
+#pragma omp simd reduction(+ : m, th)
     for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {
-      const std::size_t j = 4 * static_cast<std::size_t>(bf.neighbor[k]);
-      const double x = bf.length(k);
-      double r2 = 0;
-      for (int d = 0; d < ns.dim; ++d) {
-        const double t = yp[j + d] - yp[4 * i + d];
-        r2 += t * t;
-      }
-      const double b = bf.beta[k];
-      const double wv = omega(shape, x * inv_delta) * std::abs(b) * yp[j + 3];
-      m += wv * x * x;
-      if (b > 0) th += wv * x * (std::sqrt(r2) - x);
+      const std::size_t j = 4 * static_cast<std::size_t>(nbr[k]);
+      const double d0 = yp[j] - yi0, d1 = D > 1 ? yp[j + 1] - yi1 : 0.0, d2 = D > 2 ? yp[j + 2] - yi2 : 0.0;
+      const double x = 1.0 / std::abs(inv_len[k]);
+      const double bb = beta[k];
+      const double ab = std::abs(bb), bp = 0.5 * (bb + ab);
+      double wv = yp[j + 3];
+      if constexpr (S != InfluenceShape::Constant) wv *= omega<S>(x * inv_delta);
+      m += wv * ab * x * x;
+      th += wv * bp * x * (std::sqrt(d0 * d0 + d1 * d1 + d2 * d2) - x);
     }
+    const double theta = m > 0 ? c.D * th / m : 0.0;
     sc.m[i] = m;
-    sc.theta[i] = m > 0 ? D * th / m : 0.0;
+    sc.theta[i] = theta;
+    double* p = &sc.packed[4 * i];
+    p[0] = m > 0 ? c.D * c.kappa * theta / m : 0.0;
+    p[1] = m > 0 ? c.alpha * c.mu / m : 0.0;
+    p[2] = theta / c.D;
+    p[3] = inv_delta;
   }
+}
+
+template <int D, InfluenceShape S, bool E>
+std::size_t forces(NodeSet& ns, BondFamilies& bf, const LpsConstants& c, bool allow_breaking,
+                   LpsScratch& sc, std::vector<std::uint64_t>* log, double* W) {
+  dilatation<D, S>(ns, bf, c, sc);
+  const std::size_t n = ns.size();
+  const double* yp = ns.cur.data();
+  const double* pk = sc.packed.data();
+  const std::uint32_t* nbr = bf.neighbor.data();
+  const double* inv_len = bf.inv_length.data();
+  float* beta = bf.beta.data();
+  std::size_t broken_total = 0;
+#pragma omp parallel for schedule(dynamic, 512) reduction(+ : broken_total)
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!(ns.flags[i] & kActive)) continue;
+    const double Ai = pk[4 * i], Bi = pk[4 * i + 1], Ci = pk[4 * i + 2], idi = pk[4 * i + 3];
+    const double yi0 = yp[4 * i], yi1 = D > 1 ? yp[4 * i + 1] : 0.0, yi2 = D > 2 ? yp[4 * i + 2] : 0.0;
+    const double s0 = (allow_breaking && !(ns.flags[i] & kNoFail)) ? ns.critical_stretch[i] : INFINITY;
+    const std::uint64_t kb = bf.begin(i), ke = bf.end(i);
+    double a0 = 0, a1 = 0, a2 = 0, wdev = 0, smax = -INFINITY;
+    // Fast pass: t_ij + t_ji of intact bonds and the largest stretch; nothing written per bond.
+#pragma omp simd reduction(+ : a0, a1, a2, wdev) reduction(max : smax)
+    for (std::uint64_t k = kb; k < ke; ++k) {
+      const std::size_t j = 4 * static_cast<std::size_t>(nbr[k]);
+      const double d0 = yp[j] - yi0, d1 = D > 1 ? yp[j + 1] - yi1 : 0.0, d2 = D > 2 ? yp[j + 2] - yi2 : 0.0;
+      const double r = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2);
+      const double ail = std::abs(inv_len[k]);
+      const double x = 1.0 / ail;
+      const double bb = beta[k];
+      const double bp = 0.5 * (bb + std::abs(bb));
+      const double e = r - x;
+      double wi = 1.0, wj = 1.0;
+      if constexpr (S != InfluenceShape::Constant) {
+        wi = omega<S>(x * idi);
+        wj = omega<S>(x * pk[j + 3]);
+      }
+      const double edi = e - Ci * x;
+      const double t = wi * (Ai * x + Bi * edi) + wj * (pk[j] * x + pk[j + 1] * (e - pk[j + 2] * x));
+      const double fr = t * bp * yp[j + 3] / r;
+      a0 += fr * d0;
+      a1 += fr * d1;
+      a2 += fr * d2;
+      if constexpr (E) wdev += wi * edi * edi * bp * yp[j + 3];
+      const double s = e * ail;
+      smax = smax > (bp > 0.0 ? s : -INFINITY) ? smax : (bp > 0.0 ? s : -INFINITY);
+    }
+    if (smax > s0) {
+      // Rare: a bond breaks now; break it and redo the node without it.
+      a0 = a1 = a2 = wdev = 0;
+      double bw = 0;
+      std::size_t nb = 0;
+      for (std::uint64_t k = kb; k < ke; ++k) {
+        const float b = beta[k];
+        if (!(b > 0.0f)) continue;
+        const std::size_t j = 4 * static_cast<std::size_t>(nbr[k]);
+        const double d0 = yp[j] - yi0, d1 = D > 1 ? yp[j + 1] - yi1 : 0.0, d2 = D > 2 ? yp[j + 2] - yi2 : 0.0;
+        const double r = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2);
+        const double x = 1.0 / std::abs(inv_len[k]);
+        const double e = r - x;
+        const double V = yp[j + 3] * static_cast<double>(b);
+        if (inv_len[k] > 0.0 && e > s0 * x) {
+          beta[k] = -b;
+          bw += V;
+          ++nb;
+          if (log) {
+#pragma omp critical(lps_broken_log)
+            log->push_back(k);
+          }
+          continue;
+        }
+        double wi = 1.0, wj = 1.0;
+        if constexpr (S != InfluenceShape::Constant) {
+          wi = omega<S>(x * idi);
+          wj = omega<S>(x * pk[j + 3]);
+        }
+        const double edi = e - Ci * x;
+        const double t = wi * (Ai * x + Bi * edi) + wj * (pk[j] * x + pk[j + 1] * (e - pk[j + 2] * x));
+        const double fr = t * V / r;
+        a0 += fr * d0;
+        a1 += fr * d1;
+        a2 += fr * d2;
+        if constexpr (E) wdev += wi * edi * edi * V;
+      }
+      ns.broken_weight[i] += bw;
+      broken_total += nb;
+    }
+    ns.f[0][i] = a0;
+    if constexpr (D > 1) ns.f[1][i] = a1;
+    if constexpr (D > 2) ns.f[2][i] = a2;
+    if constexpr (E) W[i] = 0.5 * c.kappa * sc.theta[i] * sc.theta[i] + 0.5 * Bi * wdev;
+  }
+  return broken_total;
+}
+
+template <int D, bool E>
+std::size_t forces_shape(InfluenceShape s, NodeSet& ns, BondFamilies& bf, const LpsConstants& c,
+                         bool brk, LpsScratch& sc, std::vector<std::uint64_t>* log, double* W) {
+  switch (s) {
+    case InfluenceShape::Constant:
+      return forces<D, InfluenceShape::Constant, E>(ns, bf, c, brk, sc, log, W);
+    case InfluenceShape::Triangular:
+      return forces<D, InfluenceShape::Triangular, E>(ns, bf, c, brk, sc, log, W);
+    default:
+      return forces<D, InfluenceShape::InvertedTriangular, E>(ns, bf, c, brk, sc, log, W);
+  }
+}
+
+template <bool E>
+std::size_t forces_dim(InfluenceShape s, NodeSet& ns, BondFamilies& bf, const LpsConstants& c,
+                       bool brk, LpsScratch& sc, std::vector<std::uint64_t>* log, double* W) {
+  return ns.dim == 3 ? forces_shape<3, E>(s, ns, bf, c, brk, sc, log, W)
+                     : forces_shape<2, E>(s, ns, bf, c, brk, sc, log, W);
 }
 
 }  // namespace
@@ -64,92 +195,21 @@ void dilatation(const NodeSet& ns, const BondFamilies& bf, InfluenceShape shape,
 std::size_t lps_forces(NodeSet& ns, BondFamilies& bf, InfluenceShape shape, const LpsConstants& c,
                        bool allow_breaking, LpsScratch& sc, std::vector<std::uint64_t>* log,
                        std::vector<double>* Wout) {
-  dilatation(ns, bf, shape, c.D, sc);
-  const std::size_t n = ns.size();
-  const double* yp = ns.cur.data();
-  const double Dk = c.D * c.kappa, am = c.alpha * c.mu, invD = 1.0 / c.D;
-  if (Wout) Wout->assign(n, 0.0);
-  std::size_t broken_total = 0;
-#pragma omp parallel for schedule(dynamic, 512) reduction(+ : broken_total)
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!(ns.flags[i] & kActive)) continue;
-    const double mi = sc.m[i], thi = sc.theta[i];
-    if (!(mi > 0)) {
-      for (int d = 0; d < ns.dim; ++d) ns.f[d][i] = 0.0;
-      continue;
-    }
-    const double s0 = (allow_breaking && !(ns.flags[i] & kNoFail)) ? ns.critical_stretch[i] : INFINITY;
-    const double inv_di = 1.0 / ns.horizon[i];
-    double a[3] = {0, 0, 0}, wdev = 0, bw = 0;
-    std::size_t nb = 0;
-    for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {
-      const float b = bf.beta[k];
-      if (!(b > 0.0f)) continue;
-      const std::uint32_t jj = bf.neighbor[k];
-      const std::size_t j = 4 * static_cast<std::size_t>(jj);
-      const double x = bf.length(k);
-      double dv[3] = {0, 0, 0}, r2 = 0;
-      for (int d = 0; d < ns.dim; ++d) {
-        dv[d] = yp[j + d] - yp[4 * i + d];
-        r2 += dv[d] * dv[d];
-      }
-      const double r = std::sqrt(r2), e = r - x;
-      const double V = yp[j + 3] * static_cast<double>(b);
-      if (bf.inv_length[k] > 0.0 && e > s0 * x) {
-        bf.beta[k] = -b;
-        bw += V;
-        ++nb;
-        if (log) {
-#pragma omp critical(lps_broken_log)
-          log->push_back(k);
-        }
-        continue;
-      }
-      const double wi = omega(shape, x * inv_di);
-      const double wj = omega(shape, x / ns.horizon[jj]);
-      const double mj = sc.m[jj], thj = sc.theta[jj];
-      const double edi = e - thi * x * invD;
-      const double ti = (Dk * thi * wi * x + am * wi * edi) / mi;
-      const double tj = mj > 0 ? (Dk * thj * wj * x + am * wj * (e - thj * x * invD)) / mj : 0.0;
-      const double fr = (ti + tj) * V / r;
-      for (int d = 0; d < ns.dim; ++d) a[d] += fr * dv[d];
-      wdev += wi * edi * edi * V;
-    }
-    if (nb) ns.broken_weight[i] += bw;
-    broken_total += nb;
-    for (int d = 0; d < ns.dim; ++d) ns.f[d][i] = a[d];
-    if (Wout) (*Wout)[i] = 0.5 * c.kappa * thi * thi + 0.5 * am / mi * wdev;
+  if (Wout) {
+    Wout->assign(ns.size(), 0.0);
+    return forces_dim<true>(shape, ns, bf, c, allow_breaking, sc, log, Wout->data());
   }
-  return broken_total;
+  return forces_dim<false>(shape, ns, bf, c, allow_breaking, sc, log, nullptr);
 }
 
 void lps_energy_density(const NodeSet& ns, const BondFamilies& bf, InfluenceShape shape,
                         const LpsConstants& c, LpsScratch& sc, std::vector<double>& W) {
-  dilatation(ns, bf, shape, c.D, sc);
-  const std::size_t n = ns.size();
-  W.assign(n, 0.0);
-  const double* yp = ns.cur.data();
-  const double am = c.alpha * c.mu, invD = 1.0 / c.D;
-#pragma omp parallel for schedule(dynamic, 512)
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!(ns.flags[i] & kActive) || !(sc.m[i] > 0)) continue;
-    const double inv_di = 1.0 / ns.horizon[i];
-    double wdev = 0;
-    for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {
-      const float b = bf.beta[k];
-      if (!(b > 0.0f)) continue;
-      const std::size_t j = 4 * static_cast<std::size_t>(bf.neighbor[k]);
-      const double x = bf.length(k);
-      double r2 = 0;
-      for (int d = 0; d < ns.dim; ++d) {
-        const double t = yp[j + d] - yp[4 * i + d];
-        r2 += t * t;
-      }
-      const double ed = std::sqrt(r2) - x - sc.theta[i] * x * invD;
-      wdev += omega(shape, x * inv_di) * ed * ed * yp[j + 3] * static_cast<double>(b);
-    }
-    W[i] = 0.5 * c.kappa * sc.theta[i] * sc.theta[i] + 0.5 * am / sc.m[i] * wdev;
-  }
+  // The energy-writing force pass on scratch copies of the forces (nothing breaks).
+  NodeSet& mns = const_cast<NodeSet&>(ns);
+  BondFamilies& mbf = const_cast<BondFamilies&>(bf);
+  const std::array<std::vector<double>, 3> f = ns.f;
+  lps_forces(mns, mbf, shape, c, false, sc, nullptr, &W);
+  mns.f = f;
 }
 
 }  // namespace periadapt

@@ -37,6 +37,8 @@ double lps_critical_stretch(int dim, const LpsConstants& c, double delta, double
 // Per-node scratch of the two-pass kernel.
 struct LpsScratch {
   std::vector<double> m, theta;
+  // Packed per node for the force pass: [D kappa theta / m, alpha mu / m, theta / D, 1/delta].
+  std::vector<double> packed;
 };
 
 // Force densities (and bond breaking, broken-bond log, energy density as for PMB).
