@@ -2,6 +2,7 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
@@ -33,23 +34,41 @@ int run_static_plate_refined_study(const std::string& out_dir) {
     csv.open(out_dir + "/static_plate_refined_errors.csv");
     csv << "model,level,variant,x_m,error_ux_pct\n";
   }
-  fmt::print("Thesis 4.1, left half refined (models A-C): |e(u_x)| on the horizontal centre line (%)\n");
+  fmt::print("Thesis 4.1, left half refined (models A-C): |e(u_x)| on the horizontal centre line (%);\n"
+             "peak over 0.01 <= |x| <= 0.45 m, plateaus: mean over x in [-0.4, -0.1] (refined) and "
+             "[0.1, 0.4] (coarse)\n");
   fmt::print("{:<6} {:<34} {:>8} {:>9} {:>9} {:>9} {:>8}\n", "model", "variant", "nodes",
              "peak", "refined", "coarse", "L2");
   for (int level = 1; level <= 3; ++level) {
     std::vector<PlotSeries> series;
     for (const Variant& v : variants) {
+      if (level == 3 && std::string(v.pairing) == "source_horizon") {
+        // Plain scaling at level 3 (440,000 unknowns, non-symmetric, ghost forces at a 8:1
+        // horizon jump) defeats Jacobi-BiCGSTAB and the sparse LU here; skipped.
+        fmt::print("{:<6} {:<34} skipped (non-symmetric system beyond our solvers' reach)\n", "C",
+                   v.name);
+        continue;
+      }
       const Deck dk = parse_deck(tension_plate_deck(v.correction, v.pairing, level),
                                  "static-plate-refined (built-in)");
       RunOptions ro;
       ro.write_files = false;
       ro.quiet = true;
-      const RunResult r = run_static(dk, ro);
-      const PlateErrors e = plate_errors(r.model.nodes, 200e6, 200e9, 1.0 / 3.0);
       const char model = static_cast<char>('A' + level - 1);
+      RunResult r;
+      try {
+        r = run_static(dk, ro);
+      } catch (const std::exception& ex) {
+        // Plain scaling at level 3 leaves a system our solvers cannot resolve: report it.
+        fmt::print("{:<6} {:<34} no solution: {}\n", model, v.name, ex.what());
+        continue;
+      }
+      const PlateErrors e = plate_errors(r.model.nodes, 200e6, 200e9, 1.0 / 3.0);
       // Plateaus away from the loaded edges and from the interface at x = 0.
+      // Peak away from x = 0, where the exact u_x vanishes and relative errors lose meaning.
+      const double peak = std::max(e.max_ex(-0.45, -0.01), e.max_ex(0.01, 0.45));
       fmt::print("{:<6} {:<34} {:>8} {:>9.2f} {:>9.2f} {:>9.2f} {:>8.2f}\n", model, v.name,
-                 r.summary["nodes"]["final"].get<std::size_t>(), e.max_ex(-0.45, 0.45),
+                 r.summary["nodes"]["final"].get<std::size_t>(), peak,
                  e.mean_ex(-0.4, -0.1), e.mean_ex(0.1, 0.4), e.l2);
       if (csv)
         for (std::size_t k = 0; k < e.x.size(); ++k)
