@@ -158,6 +158,11 @@ RefineStats refine_nodes(Model& m, std::vector<std::uint32_t> parents, const Ada
   broken_pairs.erase(std::unique(broken_pairs.begin(), broken_pairs.end()), broken_pairs.end());
 
   // Children: offsets +-h/4 along the (possibly rotated) lattice axes.
+  struct ChildRange {
+    std::uint32_t parent;
+    std::size_t first, count;
+  };
+  std::vector<ChildRange> first_child_of;
   const double cr = std::cos(m.lattice_rotation), sr = std::sin(m.lattice_rotation);
   const int nchild = 1 << D;
   for (std::uint32_t p : parents) {
@@ -167,26 +172,41 @@ RefineStats refine_nodes(Model& m, std::vector<std::uint32_t> parents, const Ada
     fit_gradient(ns, bf, p, ns.a, G[2]);
     const double h = ns.spacing[p];
     const int level = ns.level[p] + 1;
+    // Sub-cell centres inside the body (a boundary cell of a node-on-edge grid keeps only its
+    // inner half or quarter); the parent's volume is shared equally among them.
+    std::vector<std::array<double, 3>> offs;
     for (int c = 0; c < nchild; ++c) {
-      double off[3] = {0, 0, 0};
+      std::array<double, 3> off{0, 0, 0};
       for (int d = 0; d < D; ++d) off[d] = ((c >> d) & 1 ? 0.25 : -0.25) * h;
       if (D == 2) {
         const double ox = off[0], oy = off[1];
         off[0] = cr * ox - sr * oy;
         off[1] = sr * ox + cr * oy;
       }
+      const Vec3 pos{ns.x[0][p] + off[0], ns.x[1][p] + off[1], ns.x[2][p] + off[2]};
+      bool inside = m.body.contains(pos, 1e-9 * h);
+      for (const Shape& hole : m.holes) inside = inside && !hole.contains(pos, 0.0);
+      if (inside) offs.push_back(off);
+    }
+    if (offs.empty()) continue;  // cannot happen for a node inside the body; keep the parent
+    // Children's mean offset: the interpolation is anchored there so that momentum is kept.
+    double mean[3] = {0, 0, 0};
+    for (const auto& o : offs)
+      for (int d = 0; d < D; ++d) mean[d] += o[static_cast<std::size_t>(d)] / offs.size();
+    for (const auto& off : offs) {
       const std::size_t q =
           ns.append({ns.x[0][p] + off[0], ns.x[1][p] + off[1], ns.x[2][p] + off[2]},
-                    ns.volume[p] / nchild, 0.5 * h);
+                    ns.volume[p] / static_cast<double>(offs.size()), 0.5 * h);
       ns.level[q] = static_cast<std::int8_t>(level);
       ns.density[q] = ns.density[p];
       ns.flags[q] = static_cast<std::uint8_t>(kActive | (ns.flags[p] & kNoFail));
       for (int d = 0; d < D; ++d) {
         double du = 0, dv = 0, da = 0;
         for (int e = 0; e < D; ++e) {
-          du += G[0][d][e] * off[e];
-          dv += G[1][d][e] * off[e];
-          da += G[2][d][e] * off[e];
+          const double de = off[static_cast<std::size_t>(e)] - mean[e];
+          du += G[0][d][e] * de;
+          dv += G[1][d][e] * de;
+          da += G[2][d][e] * de;
         }
         ns.u[d][q] = ns.u[d][p] + du;
         ns.v[d][q] = ns.v[d][p] + dv;
@@ -196,23 +216,26 @@ RefineStats refine_nodes(Model& m, std::vector<std::uint32_t> parents, const Ada
       scale_material_to_horizon(m, q);
       ns.sync_current(q);
     }
+    first_child_of.push_back({p, ns.size() - offs.size(), offs.size()});
     ns.flags[p] = static_cast<std::uint8_t>(ns.flags[p] & ~kActive);
     for (int d = 0; d < 3; ++d) ns.v[d][p] = ns.a[d][p] = ns.f[d][p] = ns.b[d][p] = 0.0;
     ++st.parents;
-    st.children += static_cast<std::size_t>(nchild);
+    st.children += offs.size();
   }
 
   if (inherit_boundary) {
-    // Parent p's children are the nchild consecutive ids created for it, in parents' order.
-    std::vector<std::size_t> first_child(n0, 0);
-    for (std::size_t k = 0; k < parents.size(); ++k)
-      first_child[parents[k]] = n0 + k * static_cast<std::size_t>(nchild);
+    // Each parent's children are consecutive ids.
+    std::vector<std::size_t> first_child(n0, 0), child_count(n0, 0);
+    for (const ChildRange& cr_ : first_child_of) {
+      first_child[cr_.parent] = cr_.first;
+      child_count[cr_.parent] = cr_.count;
+    }
     auto expand = [&](std::vector<std::uint32_t>& list) {
       std::vector<std::uint32_t> out;
       for (std::uint32_t i : list) {
-        if (i < n0 && is_parent[i]) {
-          for (int c = 0; c < nchild; ++c)
-            out.push_back(static_cast<std::uint32_t>(first_child[i] + static_cast<std::size_t>(c)));
+        if (i < n0 && is_parent[i] && child_count[i] > 0) {
+          for (std::size_t c = 0; c < child_count[i]; ++c)
+            out.push_back(static_cast<std::uint32_t>(first_child[i] + c));
         } else {
           out.push_back(i);
         }

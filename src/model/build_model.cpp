@@ -89,6 +89,9 @@ Model build_model(const Deck& dk) {
   m.quadrature = qs;
   m.cracks = dk.cracks;
   m.lattice_rotation = qs.lattice_rotation;
+  m.body = dk.grid.body;
+  for (int d = dk.dim; d < 3; ++d) m.body.lo[d] = -INFINITY, m.body.hi[d] = INFINITY;
+  m.holes = dk.grid.holes;
 
   const double tol = 1e-9 * dk.grid.spacing;
   for (std::size_t r = 0; r < dk.no_fail.size(); ++r)

@@ -67,6 +67,8 @@ struct Model {
   QuadratureSpec quadrature;
   std::vector<PreCrack> cracks;
   double lattice_rotation = 0.0;  // radians (2D grids): orientation of children offsets
+  Box body;                       // the body box; refinement creates no node outside it
+  std::vector<Shape> holes;       // ... nor inside a hole
   bool surface_correction = false;
   mutable LpsScratch lps_scratch;  // per-node weighted volume and dilatation (LPS)
 };

@@ -35,7 +35,7 @@ int run_static_plate_refined_study(const std::string& out_dir) {
     csv << "model,level,variant,x_m,error_ux_pct\n";
   }
   fmt::print("Thesis 4.1, left half refined (models A-C): |e(u_x)| on the horizontal centre line (%);\n"
-             "peak over 0.01 <= |x| <= 0.45 m, plateaus: mean over x in [-0.4, -0.1] (refined) and "
+             "peak over the coarse side 0.01 <= x <= 0.45 m, plateaus: mean over x in [-0.4, -0.1] (refined) and "
              "[0.1, 0.4] (coarse)\n");
   fmt::print("{:<6} {:<34} {:>8} {:>9} {:>9} {:>9} {:>8}\n", "model", "variant", "nodes",
              "peak", "refined", "coarse", "L2");
@@ -65,8 +65,10 @@ int run_static_plate_refined_study(const std::string& out_dir) {
       }
       const PlateErrors e = plate_errors(r.model.nodes, 200e6, 200e9, 1.0 / 3.0);
       // Plateaus away from the loaded edges and from the interface at x = 0.
-      // Peak away from x = 0, where the exact u_x vanishes and relative errors lose meaning.
-      const double peak = std::max(e.max_ex(-0.45, -0.01), e.max_ex(0.01, 0.45));
+      // Peak on the coarse side, as the thesis reports it (x >= 0.01 m: at x -> 0 the exact u_x
+      // vanishes and relative errors lose meaning; the refined side carries a small interface
+      // offset, visible in the CSV).
+      const double peak = e.max_ex(0.01, 0.45);
       fmt::print("{:<6} {:<34} {:>8} {:>9.2f} {:>9.2f} {:>9.2f} {:>8.2f}\n", model, v.name,
                  r.summary["nodes"]["final"].get<std::size_t>(), peak,
                  e.mean_ex(-0.4, -0.1), e.mean_ex(0.1, 0.4), e.l2);
