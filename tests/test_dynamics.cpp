@@ -133,3 +133,22 @@ TEST(Dynamics, DivergingRunStopsWithADiagnosis) {
   EXPECT_GT(r.summary["divergence"]["step"].get<long>(), 0);
   EXPECT_LT(r.summary["divergence"]["node"].get<std::size_t>(), r.model.nodes.size());
 }
+
+#include "studies/bobaru_1d_wave.hpp"
+
+TEST(Dynamics, BobaruWaveArrivalTimesMatchTableIV) {
+  // Bobaru et al. 2009, 6.2.2, Table IV: peak of the half-Gaussian's right-going pulse at x = 400
+  // (triangular micromodulus, uniform grids). The published arrival times carry the peridynamic
+  // dispersion (426.6 at delta = 3 vs 400 classically), so matching them to 0.1% checks the
+  // kernel, the micromodulus and the partial volumes together; the amplitude stays within 1% of
+  // the exact 0.01 (published within 3%).
+  const struct {
+    int nodes;
+    double delta, arrival;
+  } rows[] = {{451, 3.0, 426.60}, {901, 2.5, 409.95}, {1351, 2.0, 406.80}, {2701, 1.5, 403.20}};
+  for (const auto& r : rows) {
+    const WaveArrival a = bobaru_wave_arrival(r.nodes, r.delta);
+    EXPECT_NEAR(a.time / r.arrival, 1.0, 1e-3) << r.nodes << " nodes";
+    EXPECT_NEAR(a.amplitude / 0.01, 1.0, 0.01) << r.nodes << " nodes";
+  }
+}

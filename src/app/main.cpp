@@ -14,6 +14,7 @@
 #include "app/relaxation_run.hpp"
 #include "adapt/refine.hpp"
 #include "studies/bobaru_1d_static.hpp"
+#include "studies/bobaru_1d_wave.hpp"
 #include "studies/static_plate_2d.hpp"
 #include "studies/static_plate_refined.hpp"
 #include "io/deck.hpp"
@@ -112,7 +113,8 @@ int main(int argc, char** argv) {
                                                 "tables beside the published numbers");
   study->add_option("name", study_name, "study name")
       ->required()
-      ->check(CLI::IsMember({"bobaru-1d-static", "static-plate-2d", "static-plate-refined"}));
+      ->check(CLI::IsMember(
+          {"bobaru-1d-static", "bobaru-1d-wave", "static-plate-2d", "static-plate-refined"}));
   study->add_option("--out", out, "directory for the study's CSV files");
   try {
     app.parse(argc, argv);
@@ -125,6 +127,7 @@ int main(int argc, char** argv) {
     if (study->parsed()) {
       if (!out.empty()) std::filesystem::create_directories(out);
       if (study_name == "static-plate-2d") return run_static_plate_study(out);
+      if (study_name == "bobaru-1d-wave") return run_bobaru_1d_wave_study(out);
       if (study_name == "static-plate-refined") return run_static_plate_refined_study(out);
       return run_bobaru_1d_study(out);
     }

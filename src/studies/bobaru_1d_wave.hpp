@@ -1,0 +1,19 @@
+#pragma once
+// Bobaru et al. (2009) 6.2.2, Table IV: a half-Gaussian u0 = 0.02 exp(-0.01 x^2) at the free left
+// end of a bar of length 450 (E = A = rho = 1, triangular micromodulus) splits and its right-going
+// half (amplitude 0.01, speed 1) passes x = 400 at t = 400. Uniform grids of Table IV; arrival
+// time and amplitude of the peak at x = 400 beside the published values, and fitted rates.
+#include <string>
+
+namespace periadapt {
+
+struct WaveArrival {
+  double time = 0, amplitude = 0;  // of the displacement peak at x = 400
+};
+
+// One uniform grid of Table IV: `nodes` nodes on [0, 450], horizon `delta`.
+WaveArrival bobaru_wave_arrival(int nodes, double delta);
+
+int run_bobaru_1d_wave_study(const std::string& out_dir);
+
+}  // namespace periadapt
