@@ -33,6 +33,9 @@ struct AdaptSpec {
   std::optional<double> energy_fraction;  // energy trigger W >= alpha W_max (None: off)
   bool damage_trigger = false;            // damage trigger: delta phi > 0, step redone
   std::optional<Shape> region;            // refinement allowed only inside
+  bool total_energy = false;              // trigger on W + kinetic energy density (Bobaru)
+  bool coarsen = false;                   // return quiet refined zones to their parents
+  double visibility_factor = 1.0;         // visibility radius in horizons of the flagged node
 };
 
 }  // namespace periadapt

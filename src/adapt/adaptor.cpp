@@ -2,6 +2,8 @@
 
 #include <fmt/core.h>
 
+#include "adapt/coarsen.hpp"
+#include "core/cell_grid.hpp"
 #include "adapt/triggers.hpp"
 #include "solver/internal_forces.hpp"
 #include "solver/stable_time_step.hpp"
@@ -16,13 +18,22 @@ Adaptor::Adaptor(Model& m, VelocityVerlet& vv, const AdaptSpec& spec)
 
 std::size_t Adaptor::nodes_added() const {
   std::size_t n = 0;
-  for (const RefinementEvent& e : events_) n += e.stats.children;
+  for (const RefinementEvent& e : events_)
+    if (e.trigger != "coarsen") n += e.stats.children;
+  return n;
+}
+
+std::size_t Adaptor::nodes_removed() const {
+  std::size_t n = 0;
+  for (const RefinementEvent& e : events_)
+    if (e.trigger == "coarsen") n += e.stats.children;
   return n;
 }
 
 void Adaptor::refine(const std::vector<std::uint32_t>& ids, const char* trigger) {
   const std::vector<char> refinable = refinable_nodes(m_, spec_);
-  const std::vector<std::uint32_t> parents = apply_visibility(m_, ids, refinable);
+  const std::vector<std::uint32_t> parents =
+      apply_visibility(m_, ids, refinable, spec_.visibility_factor);
   if (parents.empty()) return;
   RefinementEvent ev;
   ev.step = vv_.step_count();
@@ -42,6 +53,51 @@ void Adaptor::refine(const std::vector<std::uint32_t>& ids, const char* trigger)
         "refinement at t = {:.4e} s made the time step unstable: dt = {:.4e} s exceeds the stable "
         "step {:.4e} s of the refined grid (node {}, level {}); lower solver.time_step",
         vv_.time(), vv_.dt(), s.dt, s.node, static_cast<int>(m_.nodes.level[s.node])));
+  vv_.refresh();
+}
+
+void Adaptor::coarsen_quiet(const std::vector<double>& E, double alpha,
+                            const std::vector<std::uint32_t>& flagged) {
+  const NodeSet& ns = m_.nodes;
+  double emax = 0;
+  for (std::size_t i = 0; i < ns.size(); ++i)
+    if ((ns.flags[i] & kActive) && !(ns.flags[i] & kBoundary)) emax = std::max(emax, E[i]);
+  // Parents of children that are all quiet and farther than the visibility radius from every
+  // hot node (any level), so that a refined zone is not coarsened under a passing wave.
+  (void)flagged;
+  std::vector<std::uint32_t> hot;
+  for (std::size_t i = 0; i < ns.size(); ++i)
+    if ((ns.flags[i] & kActive) && E[i] >= alpha * emax) hot.push_back(static_cast<std::uint32_t>(i));
+  std::vector<char> near(ns.size(), 0);
+  if (!hot.empty()) {
+    double reach = 0;
+    for (std::uint32_t i : hot) reach = std::max(reach, spec_.visibility_factor * ns.horizon[i]);
+    CellGrid grid(ns.dim, {ns.x[0].data(), ns.x[1].data(), ns.x[2].data()}, ns.size(), reach);
+    for (std::uint32_t i : hot)
+      grid.for_each_within({ns.x[0][i], ns.x[1][i], ns.x[2][i]},
+                           spec_.visibility_factor * ns.horizon[i] * (1 + 1e-12),
+                           [&](std::uint32_t j, double) { near[j] = 1; });
+  }
+  std::vector<char> busy(ns.size(), 0);
+  for (std::size_t c = 0; c < ns.size(); ++c)
+    if (ns.parent[c] >= 0 && (ns.flags[c] & kActive) && (E[c] >= alpha * emax || near[c]))
+      busy[static_cast<std::size_t>(ns.parent[c])] = 1;
+  std::vector<std::uint32_t> quiet;
+  for (std::uint32_t p : coarsenable_parents(m_))
+    if (!busy[p]) quiet.push_back(p);
+  if (quiet.empty()) return;
+  RefinementEvent ev;
+  ev.step = vv_.step_count();
+  ev.time = vv_.time();
+  ev.trigger = "coarsen";
+  ev.identified = quiet.size();
+  ev.stats = coarsen_nodes(m_, quiet);
+  std::size_t active = 0;
+  for (auto f : ns.flags) active += (f & kActive) != 0;
+  ev.active_nodes = active;
+  ev.bonds = m_.bonds.num_bonds();
+  ev.dt_stable = stable_time_step(m_).dt;
+  events_.push_back(ev);
   vv_.refresh();
 }
 
@@ -71,7 +127,16 @@ bool Adaptor::step() {
   }
   if (spec_.energy_fraction && vv_.step_count() % spec_.check_every == 0) {
     if (W_.size() != ns.size()) energy_density(m_, W_);
-    const auto ids = energy_trigger(m_, W_, *spec_.energy_fraction, refinable_nodes(m_, spec_));
+    std::vector<double>& E = W_;
+    if (spec_.total_energy)
+      for (std::size_t i = 0; i < ns.size(); ++i) {
+        double v2 = 0;
+        for (int d = 0; d < ns.dim; ++d) v2 += ns.v[d][i] * ns.v[d][i];
+        E[i] += 0.5 * ns.density[i] * v2;
+      }
+    const double alpha = *spec_.energy_fraction;
+    const auto ids = energy_trigger(m_, E, alpha, refinable_nodes(m_, spec_));
+    if (spec_.coarsen) coarsen_quiet(E, alpha, ids);
     if (!ids.empty()) refine(ids, "energy");
   }
   return true;

@@ -16,7 +16,7 @@ namespace periadapt {
 struct RefinementEvent {
   long step = 0;
   double time = 0;
-  std::string trigger;           // "energy" or "damage"
+  std::string trigger;           // "energy", "damage" or "coarsen"
   std::size_t identified = 0;    // nodes flagged by the trigger
   RefineStats stats;             // parents refined, children created, momentum, kinetic energy
   std::size_t active_nodes = 0;  // after the event
@@ -37,9 +37,12 @@ class Adaptor {
   bool step();
   const std::vector<RefinementEvent>& events() const { return events_; }
   std::size_t nodes_added() const;
+  std::size_t nodes_removed() const;  // children returned to their parents by coarsening
 
  private:
   void refine(const std::vector<std::uint32_t>& ids, const char* trigger);
+  void coarsen_quiet(const std::vector<double>& E, double alpha,
+                     const std::vector<std::uint32_t>& flagged);
   Model& m_;
   VelocityVerlet& vv_;
   AdaptSpec spec_;

@@ -1,5 +1,7 @@
 #include "adapt/refine.hpp"
 
+#include "adapt/crack_memory.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -12,17 +14,6 @@
 namespace periadapt {
 
 namespace {
-
-std::uint64_t pair_key(std::uint32_t a, std::uint32_t b) {
-  if (a > b) std::swap(a, b);
-  return (static_cast<std::uint64_t>(a) << 32) | b;
-}
-
-// A crack facet left by a broken bond: a short segment through the bond's midpoint,
-// perpendicular to it (2D).
-struct Facet {
-  Vec3 a, b;
-};
 
 void momentum_and_kinetic(const NodeSet& ns, double p[3], double& K) {
   p[0] = p[1] = p[2] = 0;
@@ -128,34 +119,7 @@ RefineStats refine_nodes(Model& m, std::vector<std::uint32_t> parents, const Ada
   std::vector<char> is_parent(n0, 0);
   for (std::uint32_t p : parents) is_parent[p] = 1;
 
-  // Broken bonds to keep (both ends survive) and facets of broken bonds that disappear.
-  std::vector<std::uint64_t> broken_pairs;
-  std::vector<Facet> facets;
-  for (std::size_t i = 0; i < n0; ++i) {
-    if (!(ns.flags[i] & kActive)) continue;
-    for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {
-      if (BondFamilies::intact(bf.beta[k])) continue;
-      const std::uint32_t j = bf.neighbor[k];
-      if (!is_parent[i] && !is_parent[j]) {
-        broken_pairs.push_back(pair_key(static_cast<std::uint32_t>(i), j));
-      } else if (D == 2) {
-        const Vec3 xi{ns.x[0][i], ns.x[1][i], 0}, xj{ns.x[0][j], ns.x[1][j], 0};
-        // Pre-crack bonds are cut again geometrically after the rebuild.
-        bool precrack = false;
-        for (const PreCrack& c : m.cracks)
-          precrack = precrack || bond_crosses_segment(xi, xj, c.points[0], c.points[1]);
-        if (precrack) continue;
-        const Vec3 mid = scale(add(xi, xj), 0.5), e = sub(xj, xi);
-        const double L = norm(e);
-        // Short facets: the bond says the crack crosses it, not where nor how it is oriented.
-        const double half = 0.25 * std::min(ns.spacing[i], ns.spacing[j]);
-        const Vec3 t{-e[1] / L * half, e[0] / L * half, 0};
-        facets.push_back({sub(mid, t), add(mid, t)});
-      }
-    }
-  }
-  std::sort(broken_pairs.begin(), broken_pairs.end());
-  broken_pairs.erase(std::unique(broken_pairs.begin(), broken_pairs.end()), broken_pairs.end());
+  const CrackMemory memory = remember_cracks(m, is_parent);
 
   // Children: offsets +-h/4 along the (possibly rotated) lattice axes.
   struct ChildRange {
@@ -198,6 +162,7 @@ RefineStats refine_nodes(Model& m, std::vector<std::uint32_t> parents, const Ada
           ns.append({ns.x[0][p] + off[0], ns.x[1][p] + off[1], ns.x[2][p] + off[2]},
                     ns.volume[p] / static_cast<double>(offs.size()), 0.5 * h);
       ns.level[q] = static_cast<std::int8_t>(level);
+      ns.parent[q] = static_cast<std::int32_t>(p);
       ns.density[q] = ns.density[p];
       ns.flags[q] = static_cast<std::uint8_t>(kActive | (ns.flags[p] & kNoFail));
       for (int d = 0; d < D; ++d) {
@@ -284,48 +249,7 @@ RefineStats refine_nodes(Model& m, std::vector<std::uint32_t> parents, const Ada
     }
   }
 
-  // New families; restore the crack state.
-  bf = build_families(ns, m.quadrature);
-  if (m.surface_correction)
-    apply_surface_correction(ns, bf, m.material.shape,
-                             p_wave_modulus(D, m.material.plane, m.material.E, m.material.nu));
-  apply_precracks(ns, bf, m.cracks);
-  CellGrid* fgrid = nullptr;
-  std::vector<double> fx[3];
-  double reach = 0;
-  if (!facets.empty()) {
-    for (auto& v : fx) v.resize(facets.size());
-    for (std::size_t f = 0; f < facets.size(); ++f)
-      for (int d = 0; d < 3; ++d) fx[d][f] = 0.5 * (facets[f].a[d] + facets[f].b[d]);
-    for (const Facet& f : facets) reach = std::max(reach, 0.5 * norm(sub(f.b, f.a)));
-  }
-  double hmax_all = 0;
-  for (std::size_t i = 0; i < ns.size(); ++i)
-    if (ns.flags[i] & kActive) hmax_all = std::max(hmax_all, ns.horizon[i]);
-  CellGrid facet_grid(D, {fx[0].data(), fx[1].data(), fx[2].data()}, facets.size(),
-                      std::max(reach + 0.5 * hmax_all, 1e-300));
-  if (!facets.empty()) fgrid = &facet_grid;
-  for (std::size_t i = 0; i < ns.size(); ++i) {
-    for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {
-      const std::uint32_t j = bf.neighbor[k];
-      if (!BondFamilies::intact(bf.beta[k])) continue;
-      bool broken = false;
-      if (i < n0 && j < n0) {
-        broken = std::binary_search(broken_pairs.begin(), broken_pairs.end(),
-                                    pair_key(static_cast<std::uint32_t>(i), j));
-      } else if (fgrid) {
-        const Vec3 xi{ns.x[0][i], ns.x[1][i], 0}, xj{ns.x[0][j], ns.x[1][j], 0};
-        const Vec3 mid = scale(add(xi, xj), 0.5);
-        const double r = 0.5 * norm(sub(xj, xi)) + reach;
-        fgrid->for_each_within({mid[0], mid[1], 0}, r, [&](std::uint32_t f, double) {
-          if (!broken && bond_crosses_segment(xi, xj, facets[f].a, facets[f].b)) broken = true;
-        });
-      }
-      if (broken) bf.beta[k] = -bf.beta[k];
-    }
-  }
-  mark_unbreakable_bonds(ns, bf);
-  update_damage_weights(ns, bf);
+  rebuild_families(m, memory, n0);
   momentum_and_kinetic(ns, st.momentum_after, st.kinetic_after);
   st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return st;

@@ -49,18 +49,20 @@ std::vector<std::uint32_t> damage_trigger(const Model& m, const std::vector<doub
 }
 
 std::vector<std::uint32_t> apply_visibility(const Model& m, const std::vector<std::uint32_t>& ids,
-                                            const std::vector<char>& refinable) {
+                                            const std::vector<char>& refinable,
+                                            double radius_factor) {
   const NodeSet& ns = m.nodes;
   std::vector<char> mark(ns.size(), 0);
   double hmax = 0;
   for (std::uint32_t i : ids) {
     mark[i] = 1;
-    hmax = std::max(hmax, ns.horizon[i]);
+    hmax = std::max(hmax, radius_factor * ns.horizon[i]);
   }
   if (ids.empty()) return {};
   CellGrid grid(ns.dim, {ns.x[0].data(), ns.x[1].data(), ns.x[2].data()}, ns.size(), hmax);
   for (std::uint32_t i : ids)
-    grid.for_each_within({ns.x[0][i], ns.x[1][i], ns.x[2][i]}, ns.horizon[i] * (1 + 1e-12),
+    grid.for_each_within({ns.x[0][i], ns.x[1][i], ns.x[2][i]},
+                         radius_factor * ns.horizon[i] * (1 + 1e-12),
                          [&](std::uint32_t j, double) {
                            if (refinable[j] && ns.level[j] <= ns.level[i]) mark[j] = 1;
                          });

@@ -26,6 +26,7 @@ std::vector<std::uint32_t> damage_trigger(const Model& m, const std::vector<doub
 // Visibility: every refinable node within the horizon of an identified node, at the same or a
 // coarser level, is refined too, so that no coarse node sees the refined zone's core.
 std::vector<std::uint32_t> apply_visibility(const Model& m, const std::vector<std::uint32_t>& ids,
-                                            const std::vector<char>& refinable);
+                                            const std::vector<char>& refinable,
+                                            double radius_factor = 1.0);
 
 }  // namespace periadapt

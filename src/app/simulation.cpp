@@ -279,13 +279,15 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
   j["grid"] = {{"spacing", m.grid_spacing}, {"horizon", m.horizon}};
   if (adaptor) {
     std::size_t parents = 0;
-    for (const auto& e : adaptor->events()) parents += e.stats.parents;
+    for (const auto& e : adaptor->events())
+      if (e.trigger != "coarsen") parents += e.stats.parents;
     int top = 0;
     for (std::size_t i = 0; i < ns.size(); ++i)
       if (ns.flags[i] & kActive) top = std::max(top, static_cast<int>(ns.level[i]));
     j["adapt"] = {{"events", adaptor->events().size()},
                   {"parents_refined", parents},
                   {"nodes_added", adaptor->nodes_added()},
+                  {"nodes_removed", adaptor->nodes_removed()},
                   {"finest_level", top},
                   {"refinement_wall_s", adapt_seconds}};
     j["nodes"]["active"] = active_count(ns);

@@ -19,6 +19,12 @@ struct BondFamilies {
   std::vector<double> inv_length;  // 1/|xi|, negative when the bond cannot break
   std::vector<float> beta;
 
+  // Dual-horizon form only: for each node, the bonds of other nodes' families that point at it
+  // (the transpose): owner node and bond index. Empty otherwise.
+  std::vector<std::uint64_t> t_offsets;
+  std::vector<std::uint32_t> t_owner;
+  std::vector<std::uint64_t> t_bond;
+
   std::size_t num_nodes() const { return offsets.size() - 1; }
   std::size_t num_bonds() const { return neighbor.size(); }
   std::uint64_t begin(std::size_t i) const { return offsets[i]; }

@@ -33,6 +33,7 @@ struct NodeSet {
   std::vector<double> broken_weight;      // volume-weighted broken bonds (damage numerator)
   std::vector<double> family_weight;      // volume-weighted family size (damage denominator)
   std::vector<std::int8_t> level;
+  std::vector<std::int32_t> parent;  // refinement parent (-1 for nodes of the initial grid)
   std::vector<std::uint8_t> flags;
 
   std::size_t size() const { return volume.size(); }
@@ -57,6 +58,7 @@ struct NodeSet {
     broken_weight.push_back(0.0);
     family_weight.push_back(0.0);
     level.push_back(0);
+    parent.push_back(-1);
     flags.push_back(kActive);
     return volume.size() - 1;
   }
@@ -76,7 +78,7 @@ struct NodeSet {
   }
 
   // Bytes held per node by the arrays above (for memory reports).
-  static constexpr std::size_t bytes_per_node() { return 6 * 3 * 8 + 4 * 8 + 9 * 8 + 2; }
+  static constexpr std::size_t bytes_per_node() { return 6 * 3 * 8 + 4 * 8 + 9 * 8 + 2 + 4; }
 };
 
 }  // namespace periadapt

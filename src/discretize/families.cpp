@@ -84,6 +84,23 @@ BondFamilies build_families(const NodeSet& nodes, const QuadratureSpec& quad) {
   return fam;
 }
 
+void build_transpose(BondFamilies& bf) {
+  const std::size_t n = bf.num_nodes();
+  bf.t_offsets.assign(n + 1, 0);
+  for (std::uint32_t j : bf.neighbor) ++bf.t_offsets[j + 1];
+  for (std::size_t i = 0; i < n; ++i) bf.t_offsets[i + 1] += bf.t_offsets[i];
+  bf.t_owner.resize(bf.num_bonds());
+  bf.t_bond.resize(bf.num_bonds());
+  std::vector<std::uint64_t> fill(bf.t_offsets.begin(), bf.t_offsets.end() - 1);
+  // Owners in increasing order, so each transposed row is sorted by owner (deterministic sums).
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {
+      const std::uint64_t q = fill[bf.neighbor[k]]++;
+      bf.t_owner[q] = static_cast<std::uint32_t>(i);
+      bf.t_bond[q] = k;
+    }
+}
+
 void mark_unbreakable_bonds(const NodeSet& ns, BondFamilies& bf) {
   const std::size_t n = ns.size();
 #pragma omp parallel for schedule(static)

@@ -14,6 +14,9 @@ struct QuadratureSpec {
 
 BondFamilies build_families(const NodeSet& nodes, const QuadratureSpec& quadrature);
 
+// Builds the transpose of the families (t_offsets, t_owner, t_bond), sorted by owner.
+void build_transpose(BondFamilies& bonds);
+
 // Bonds with an end on a no-fail node can never break (flag carried by the bond's sign).
 void mark_unbreakable_bonds(const NodeSet& nodes, BondFamilies& bonds);
 

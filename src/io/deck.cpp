@@ -330,9 +330,6 @@ Deck parse_deck(const std::string& text, const std::string& name) {
                             "allow_unstable_time_step"})
         if (s.has(k))
           s.fail(k, "a static solve has no time stepping; remove this key or use type: explicit");
-      dk.dual_horizon =
-          s.choice("bond_pairing", {"source_horizon", "dual_horizon"}, "source_horizon") ==
-          "dual_horizon";
       dk.damage = false;
     } else {
       if (s.has("time_step")) dk.time_step = s.number("time_step", std::nullopt, positive());
@@ -348,6 +345,12 @@ Deck parse_deck(const std::string& text, const std::string& name) {
           return v >= 1 ? std::string() : std::string("must be >= 1");
         });
     }
+    dk.dual_horizon =
+        s.choice("bond_pairing", {"source_horizon", "dual_horizon"}, "source_horizon") ==
+        "dual_horizon";
+    if (dk.dual_horizon && dk.formulation == "lps")
+      s.fail("bond_pairing", "the dual-horizon form is available for the bond-based pmb model "
+                             "only");
     s.finish();
   }
   if (dk.damage && !dk.G0 && !dk.s0)
@@ -403,6 +406,14 @@ Deck parse_deck(const std::string& text, const std::string& name) {
                                  : std::string("a fraction of the maximum energy density in (0, 1]");
       });
     ad.damage_trigger = a->boolean("damage_trigger", false);
+    ad.total_energy = a->choice("energy", {"strain", "total"}, "strain") == "total";
+    ad.coarsen = a->boolean("coarsen", false);
+    if (ad.coarsen && !ad.energy_fraction)
+      a->fail("coarsen", "coarsening needs the energy trigger (it coarsens where the energy "
+                         "is below the trigger level)");
+    ad.visibility_factor = a->number("visibility_factor", 1.0, [](double v) {
+      return (v >= 1.0 && v <= 20.0) ? std::string() : std::string("must be in [1, 20] horizons");
+    });
     ad.enabled = ad.energy_fraction || ad.damage_trigger;
     if (!ad.enabled && ad.initial.empty())
       a->fail("", "give at least one trigger (energy_trigger: fraction of W_max, damage_trigger: "

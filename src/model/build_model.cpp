@@ -97,6 +97,8 @@ Model build_model(const Deck& dk) {
   for (std::size_t r = 0; r < dk.no_fail.size(); ++r)
     for (std::uint32_t i : select(ns, dk.no_fail[r], tol)) ns.flags[i] |= kNoFail;
   mark_unbreakable_bonds(ns, m.bonds);
+  m.dual_horizon = dk.dual_horizon && dk.solver != Deck::SolverType::Static;
+  if (m.dual_horizon) build_transpose(m.bonds);
 
   for (const LoadSpec& ls : dk.loads) {
     BodyLoad bl;

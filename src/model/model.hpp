@@ -70,6 +70,7 @@ struct Model {
   Box body;                       // the body box; refinement creates no node outside it
   std::vector<Shape> holes;       // ... nor inside a hole
   bool surface_correction = false;
+  bool dual_horizon = false;  // explicit PMB in the dual-horizon form (bonds.t_* maintained)
   mutable LpsScratch lps_scratch;  // per-node weighted volume and dilatation (LPS)
 };
 

@@ -1,6 +1,7 @@
 #include "solver/internal_forces.hpp"
 
 #include "material/pmb.hpp"
+#include "material/pmb_dual.hpp"
 
 namespace periadapt {
 
@@ -9,6 +10,8 @@ std::size_t internal_forces(Model& m, bool allow_breaking, std::vector<std::uint
   if (m.material.lps)
     return lps_forces(m.nodes, m.bonds, m.material.shape, m.material.lps_constants, allow_breaking,
                       m.lps_scratch, log, W);
+  if (m.dual_horizon)
+    return pmb_dual_forces(m.nodes, m.bonds, m.material.shape, allow_breaking, log, W);
   return pmb_forces(m.nodes, m.bonds, m.material.shape, allow_breaking, log, W).newly_broken;
 }
 

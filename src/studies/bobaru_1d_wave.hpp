@@ -9,10 +9,14 @@ namespace periadapt {
 
 struct WaveArrival {
   double time = 0, amplitude = 0;  // of the displacement peak at x = 400
+  double mean_nodes = 0;           // active nodes averaged over the run
+  std::size_t min_nodes = 0, max_nodes = 0;
 };
 
-// One uniform grid of Table IV: `nodes` nodes on [0, 450], horizon `delta`.
-WaveArrival bobaru_wave_arrival(int nodes, double delta);
+// One grid of Table IV (uniform) or Table V (adaptive: level-1 refinement where the total energy
+// density reaches 75% of its maximum, within 6 horizons, coarsening behind the pulse): `nodes`
+// nodes on [0, 450], horizon `delta`.
+WaveArrival bobaru_wave_arrival(int nodes, double delta, bool adaptive = false);
 
 int run_bobaru_1d_wave_study(const std::string& out_dir);
 

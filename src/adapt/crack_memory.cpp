@@ -1,0 +1,105 @@
+#include "adapt/crack_memory.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/cell_grid.hpp"
+#include "discretize/surface_correction.hpp"
+
+namespace periadapt {
+
+namespace {
+
+std::uint64_t pair_key(std::uint32_t a, std::uint32_t b) {
+  if (a > b) std::swap(a, b);
+  return (static_cast<std::uint64_t>(a) << 32) | b;
+}
+
+
+}  // namespace
+
+CrackMemory remember_cracks(const Model& m, const std::vector<char>& vanishing) {
+  const NodeSet& ns = m.nodes;
+  const BondFamilies& bf = m.bonds;
+  const int D = ns.dim;
+  CrackMemory mem;
+  std::vector<std::uint64_t>& broken_pairs = mem.broken_pairs;
+  std::vector<Facet>& facets = mem.facets;
+  for (std::size_t i = 0; i < ns.size(); ++i) {
+    if (!(ns.flags[i] & kActive)) continue;
+    for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {
+      if (BondFamilies::intact(bf.beta[k])) continue;
+      const std::uint32_t j = bf.neighbor[k];
+      if (!vanishing[i] && !vanishing[j]) {
+        broken_pairs.push_back(pair_key(static_cast<std::uint32_t>(i), j));
+      } else if (D == 2) {
+        const Vec3 xi{ns.x[0][i], ns.x[1][i], 0}, xj{ns.x[0][j], ns.x[1][j], 0};
+        // Pre-crack bonds are cut again geometrically after the rebuild.
+        bool precrack = false;
+        for (const PreCrack& c : m.cracks)
+          precrack = precrack || bond_crosses_segment(xi, xj, c.points[0], c.points[1]);
+        if (precrack) continue;
+        const Vec3 mid = scale(add(xi, xj), 0.5), e = sub(xj, xi);
+        const double L = norm(e);
+        // Short facets: the bond says the crack crosses it, not where nor how it is oriented.
+        const double half = 0.25 * std::min(ns.spacing[i], ns.spacing[j]);
+        const Vec3 t{-e[1] / L * half, e[0] / L * half, 0};
+        facets.push_back({sub(mid, t), add(mid, t)});
+      }
+    }
+  }
+  std::sort(broken_pairs.begin(), broken_pairs.end());
+  broken_pairs.erase(std::unique(broken_pairs.begin(), broken_pairs.end()), broken_pairs.end());
+
+  return mem;
+}
+
+void rebuild_families(Model& m, const CrackMemory& mem, std::size_t n_before) {
+  NodeSet& ns = m.nodes;
+  BondFamilies& bf = m.bonds;
+  const int D = ns.dim;
+  bf = build_families(ns, m.quadrature);
+  if (m.surface_correction)
+    apply_surface_correction(ns, bf, m.material.shape,
+                             p_wave_modulus(D, m.material.plane, m.material.E, m.material.nu));
+  apply_precracks(ns, bf, m.cracks);
+  CellGrid* fgrid = nullptr;
+  std::vector<double> fx[3];
+  double reach = 0;
+  if (!mem.facets.empty()) {
+    for (auto& v : fx) v.resize(mem.facets.size());
+    for (std::size_t f = 0; f < mem.facets.size(); ++f)
+      for (int d = 0; d < 3; ++d) fx[d][f] = 0.5 * (mem.facets[f].a[d] + mem.facets[f].b[d]);
+    for (const Facet& f : mem.facets) reach = std::max(reach, 0.5 * norm(sub(f.b, f.a)));
+  }
+  double hmax_all = 0;
+  for (std::size_t i = 0; i < ns.size(); ++i)
+    if (ns.flags[i] & kActive) hmax_all = std::max(hmax_all, ns.horizon[i]);
+  CellGrid facet_grid(D, {fx[0].data(), fx[1].data(), fx[2].data()}, mem.facets.size(),
+                      std::max(reach + 0.5 * hmax_all, 1e-300));
+  if (!mem.facets.empty()) fgrid = &facet_grid;
+  for (std::size_t i = 0; i < ns.size(); ++i) {
+    for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {
+      const std::uint32_t j = bf.neighbor[k];
+      if (!BondFamilies::intact(bf.beta[k])) continue;
+      bool broken = false;
+      if (i < n_before && j < n_before) {
+        broken = std::binary_search(mem.broken_pairs.begin(), mem.broken_pairs.end(),
+                                    pair_key(static_cast<std::uint32_t>(i), j));
+      } else if (fgrid) {
+        const Vec3 xi{ns.x[0][i], ns.x[1][i], 0}, xj{ns.x[0][j], ns.x[1][j], 0};
+        const Vec3 mid = scale(add(xi, xj), 0.5);
+        const double r = 0.5 * norm(sub(xj, xi)) + reach;
+        fgrid->for_each_within({mid[0], mid[1], 0}, r, [&](std::uint32_t f, double) {
+          if (!broken && bond_crosses_segment(xi, xj, mem.facets[f].a, mem.facets[f].b)) broken = true;
+        });
+      }
+      if (broken) bf.beta[k] = -bf.beta[k];
+    }
+  }
+  mark_unbreakable_bonds(ns, bf);
+  if (m.dual_horizon) build_transpose(bf);
+  update_damage_weights(ns, bf);
+}
+
+}  // namespace periadapt

@@ -1,0 +1,30 @@
+#pragma once
+// What a change of the node set (refinement, coarsening) must carry over to the new bond
+// families: which bonds between surviving nodes were broken, and short crack facets standing for
+// the broken bonds of the nodes that vanish, so that new bonds crossing them start broken.
+#include <cstdint>
+#include <vector>
+
+#include "core/geometry.hpp"
+#include "model/model.hpp"
+
+namespace periadapt {
+
+struct Facet {
+  Vec3 a, b;  // a segment in the xy-plane (2D)
+};
+
+struct CrackMemory {
+  std::vector<std::uint64_t> broken_pairs;  // sorted (min id << 32 | max id)
+  std::vector<Facet> facets;
+};
+
+// `vanishing[i]`: node i is deactivated by the change (ids of the current node set).
+CrackMemory remember_cracks(const Model& m, const std::vector<char>& vanishing);
+
+// New families for the changed node set (surface correction and pre-cracks reapplied); bonds
+// between nodes that existed before (id < n_before) keep their broken state, new bonds crossing a
+// facet start broken; unbreakable flags and damage weights are refreshed.
+void rebuild_families(Model& m, const CrackMemory& memory, std::size_t n_before);
+
+}  // namespace periadapt
