@@ -47,23 +47,11 @@ TEST(Dynamics, GaussianPulseConservesEnergyInAPlate) {
       "initial_conditions: {displacement: ['1e-5*exp(-((x-0.05)/0.01)^2)', '0']}\n"
       "damage: {enabled: false}\n"
       "solver: {end_time: 0.1, safety_factor: 0.5}\n";
-  const Deck dk = test::deck_from(yaml);
-  Model m = build_model(dk);
-  const TimeStepChoice ts = choose_time_step(dk, m);
-  VelocityVerlet vv(m, ts.dt);
-  vv.initialize();
-  std::vector<double> W;
-  const double E0 = kinetic_energy(m.nodes) + strain_energy(m, W);
-  ASSERT_GT(E0, 0);
-  double worst = 0, maxK = 0;
-  for (long s = 0; s < ts.steps; ++s) {
-    ASSERT_TRUE(vv.step());
-    const double K = kinetic_energy(m.nodes);
-    maxK = std::max(maxK, K);
-    worst = std::max(worst, std::abs(K + strain_energy(m, W) - E0) / E0);
-  }
-  EXPECT_GT(maxK, 0.3 * E0) << "the pulse must actually move";
-  EXPECT_LT(worst, 0.005);
+  const test::EnergyRun r = test::run_energy_history(yaml);
+  ASSERT_TRUE(r.ok);
+  ASSERT_GT(r.e0, 0);
+  EXPECT_GT(r.max_kinetic, 0.3 * r.e0) << "the pulse must actually move";
+  EXPECT_LT(r.worst_drift, 0.005);
 }
 
 TEST(Dynamics, OneDimensionalPulseArrivesAtTheClassicalTime) {

@@ -2,8 +2,15 @@
 // Small builders shared by the tests: decks from text, and models on uniform grids.
 #include <string>
 
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "analysis/energy.hpp"
+#include "app/simulation.hpp"
 #include "io/deck.hpp"
 #include "model/build_model.hpp"
+#include "solver/velocity_verlet.hpp"
 
 namespace periadapt::test {
 
@@ -14,6 +21,34 @@ inline Deck deck_from(const std::string& yaml) { return parse_deck(yaml, "test.y
 inline std::string basic_deck(const std::string& model, const std::string& material,
                               const std::string& disc, const std::string& rest) {
   return "model:\n" + model + "material:\n" + material + "discretization:\n" + disc + rest;
+}
+
+struct EnergyRun {
+  bool ok = true;
+  double e0 = 0, worst_drift = 0, max_kinetic = 0;  // drift relative to e0
+};
+
+// Runs a deck's explicit steps and follows kinetic + strain energy (every `every` steps).
+inline EnergyRun run_energy_history(const std::string& yaml, int every = 1) {
+  const Deck dk = deck_from(yaml);
+  Model m = build_model(dk);
+  const TimeStepChoice ts = choose_time_step(dk, m);
+  VelocityVerlet vv(m, ts.dt);
+  vv.initialize();
+  std::vector<double> W;
+  EnergyRun r;
+  r.e0 = kinetic_energy(m.nodes) + strain_energy(m, W);
+  for (long s = 0; s < ts.steps; ++s) {
+    if (!vv.step()) {
+      r.ok = false;
+      return r;
+    }
+    if (s % every) continue;
+    const double K = kinetic_energy(m.nodes);
+    r.max_kinetic = std::max(r.max_kinetic, K);
+    r.worst_drift = std::max(r.worst_drift, std::abs(K + strain_energy(m, W) - r.e0) / r.e0);
+  }
+  return r;
 }
 
 }  // namespace periadapt::test

@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "adapt/crack_memory.hpp"
+#include "analysis/energy.hpp"
 
 namespace periadapt {
 
@@ -33,13 +34,9 @@ bool has_dynamic_break(const Model& m, std::size_t i) {
 }
 
 void totals(const NodeSet& ns, double p[3], double& K) {
-  p[0] = p[1] = p[2] = 0;
-  K = 0;
-  for (std::size_t i = 0; i < ns.size(); ++i) {
-    if (!(ns.flags[i] & kActive)) continue;
-    const double mass = ns.density[i] * ns.volume[i];
-    for (int d = 0; d < ns.dim; ++d) p[d] += mass * ns.v[d][i], K += 0.5 * mass * ns.v[d][i] * ns.v[d][i];
-  }
+  const auto mom = linear_momentum(ns);
+  for (int d = 0; d < 3; ++d) p[d] = mom[static_cast<std::size_t>(d)];
+  K = kinetic_energy(ns);
 }
 
 }  // namespace

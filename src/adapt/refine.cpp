@@ -1,6 +1,7 @@
 #include "adapt/refine.hpp"
 
 #include "adapt/crack_memory.hpp"
+#include "analysis/energy.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -16,16 +17,9 @@ namespace periadapt {
 namespace {
 
 void momentum_and_kinetic(const NodeSet& ns, double p[3], double& K) {
-  p[0] = p[1] = p[2] = 0;
-  K = 0;
-  for (std::size_t i = 0; i < ns.size(); ++i) {
-    if (!(ns.flags[i] & kActive)) continue;
-    const double mass = ns.density[i] * ns.volume[i];
-    for (int d = 0; d < ns.dim; ++d) {
-      p[d] += mass * ns.v[d][i];
-      K += 0.5 * mass * ns.v[d][i] * ns.v[d][i];
-    }
-  }
+  const auto mom = linear_momentum(ns);
+  for (int d = 0; d < 3; ++d) p[d] = mom[static_cast<std::size_t>(d)];
+  K = kinetic_energy(ns);
 }
 
 // Least-squares gradient of field F (dim components) over the parent's visible family, solved by

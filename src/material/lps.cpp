@@ -30,10 +30,7 @@ namespace {
 
 template <InfluenceShape S>
 inline double omega(double t) {
-  t = t < 1.0 ? t : 1.0;
-  if constexpr (S == InfluenceShape::Constant) return 1.0;
-  else if constexpr (S == InfluenceShape::Triangular) return 1.0 - t;
-  else return t;
+  return influence_at<S>(t);
 }
 
 // Pass 1: weighted volume (all bonds) and dilatation (intact bonds) of every active node, and

@@ -19,6 +19,16 @@ inline double influence(InfluenceShape s, double t) {
   return 1.0;
 }
 
+// g(t) for a shape known at compile time (hot kernels); t may exceed 1 for cells partly covered
+// beyond the horizon, where the shape is held at its edge value.
+template <InfluenceShape S>
+inline double influence_at(double t) {
+  t = t < 1.0 ? t : 1.0;
+  if constexpr (S == InfluenceShape::Constant) return 1.0;
+  else if constexpr (S == InfluenceShape::Triangular) return 1.0 - t;
+  else return t;
+}
+
 // Moment M_k = int_0^1 g(t) t^k dt.
 double shape_moment(InfluenceShape s, int k);
 

@@ -7,14 +7,9 @@ namespace periadapt {
 
 namespace {
 
-// Influence shape; t may exceed 1 for partially covered cells beyond the horizon (sub-cell
-// quadrature), where the shape is held at its edge value.
 template <InfluenceShape S>
 inline double g(double t) {
-  t = t < 1.0 ? t : 1.0;
-  if constexpr (S == InfluenceShape::Constant) return 1.0;
-  else if constexpr (S == InfluenceShape::Triangular) return 1.0 - t;
-  else return t;
+  return influence_at<S>(t);
 }
 
 // E: also the strain-energy density W_i (thesis Eq. 2.14) of the bonds intact after this call.
