@@ -96,7 +96,9 @@ RefineStats coarsen_nodes(Model& m, const std::vector<std::uint32_t>& parents) {
     st.children += ch[p].size();
   }
   // Every id already exists: "old" pairs keep their state, the revived parents' bonds are new.
-  rebuild_families(m, memory, ns.size());
+  std::vector<char> changed(vanishing);
+  for (std::uint32_t p : parents) changed[p] = 1;
+  rebuild_families(m, memory, ns.size(), changed);
   totals(ns, st.momentum_after, st.kinetic_after);
   st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return st;

@@ -2,17 +2,20 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 
 #include "core/cell_grid.hpp"
+#include "discretize/partial_volume.hpp"
 #include "discretize/surface_correction.hpp"
 
 namespace periadapt {
 
 namespace {
 
-std::uint64_t pair_key(std::uint32_t a, std::uint32_t b) {
-  if (a > b) std::swap(a, b);
-  return (static_cast<std::uint64_t>(a) << 32) | b;
+// Directed: a bond of i's family to j (its state can differ from j's bond to i when the two
+// critical stretches or no-fail flags differ).
+std::uint64_t pair_key(std::uint32_t owner, std::uint32_t other) {
+  return (static_cast<std::uint64_t>(owner) << 32) | other;
 }
 
 
@@ -54,11 +57,38 @@ CrackMemory remember_cracks(const Model& m, const std::vector<char>& vanishing) 
   return mem;
 }
 
-void rebuild_families(Model& m, const CrackMemory& mem, std::size_t n_before) {
+void rebuild_families(Model& m, const CrackMemory& mem, std::size_t n_before,
+                      const std::vector<char>& changed) {
   NodeSet& ns = m.nodes;
   BondFamilies& bf = m.bonds;
   const int D = ns.dim;
-  bf = build_families(ns, m.quadrature);
+  // The window: changed nodes and every active node whose search radius reaches one of them.
+  std::vector<char> rebuild(ns.size(), 0);
+  bool global = m.surface_correction || std::getenv("PERIADAPT_GLOBAL_REBUILD") != nullptr;
+  if (!global) {
+    double rmax = 0;
+    std::vector<std::uint32_t> ch;
+    for (std::size_t i = 0; i < ns.size(); ++i) {
+      if (ns.flags[i] & kActive)
+        rmax = std::max(rmax, quadrature_search_radius(m.quadrature.rule, D, ns.horizon[i],
+                                                       ns.spacing[i]));
+      if (i < changed.size() && changed[i]) ch.push_back(static_cast<std::uint32_t>(i));
+    }
+    CellGrid grid(D, {ns.x[0].data(), ns.x[1].data(), ns.x[2].data()}, ns.size(),
+                  std::max(rmax, 1e-300));
+    for (std::uint32_t c : ch) {
+      rebuild[c] = 1;
+      grid.for_each_within({ns.x[0][c], ns.x[1][c], ns.x[2][c]}, rmax * (1 + 1e-9),
+                           [&](std::uint32_t j, double d2) {
+                             if (!(ns.flags[j] & kActive) || rebuild[j]) return;
+                             const double rj = quadrature_search_radius(
+                                 m.quadrature.rule, D, ns.horizon[j], ns.spacing[j]);
+                             if (d2 <= rj * rj * (1 + 1e-9)) rebuild[j] = 1;
+                           });
+    }
+  }
+  bf = global ? build_families(ns, m.quadrature) : build_families(ns, m.quadrature, &bf, &rebuild);
+  if (global) std::fill(rebuild.begin(), rebuild.end(), 1);
   if (m.surface_correction)
     apply_surface_correction(ns, bf, m.material.shape,
                              p_wave_modulus(D, m.material.plane, m.material.E, m.material.nu));
@@ -79,6 +109,7 @@ void rebuild_families(Model& m, const CrackMemory& mem, std::size_t n_before) {
                       std::max(reach + 0.5 * hmax_all, 1e-300));
   if (!mem.facets.empty()) fgrid = &facet_grid;
   for (std::size_t i = 0; i < ns.size(); ++i) {
+    if (!rebuild[i]) continue;  // copied rows keep their bond states
     for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {
       const std::uint32_t j = bf.neighbor[k];
       if (!BondFamilies::intact(bf.beta[k])) continue;

@@ -15,7 +15,7 @@ struct Facet {
 };
 
 struct CrackMemory {
-  std::vector<std::uint64_t> broken_pairs;  // sorted (min id << 32 | max id)
+  std::vector<std::uint64_t> broken_pairs;  // sorted (owner id << 32 | neighbor id)
   std::vector<Facet> facets;
 };
 
@@ -24,7 +24,11 @@ CrackMemory remember_cracks(const Model& m, const std::vector<char>& vanishing);
 
 // New families for the changed node set (surface correction and pre-cracks reapplied); bonds
 // between nodes that existed before (id < n_before) keep their broken state, new bonds crossing a
-// facet start broken; unbreakable flags and damage weights are refreshed.
-void rebuild_families(Model& m, const CrackMemory& memory, std::size_t n_before);
+// facet start broken; unbreakable flags and damage weights are refreshed. `changed` flags the
+// nodes that appeared, vanished or changed horizon: only the families within reach of them are
+// searched again (a local window), the others are copied (not with surface correction, whose
+// factors are not local: then everything is rebuilt).
+void rebuild_families(Model& m, const CrackMemory& memory, std::size_t n_before,
+                      const std::vector<char>& changed);
 
 }  // namespace periadapt

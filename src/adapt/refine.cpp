@@ -218,6 +218,7 @@ RefineStats refine_nodes(Model& m, std::vector<std::uint32_t> parents, const Ada
       for (std::uint32_t i : pm.nodes) ns.flags[i] |= kBoundary;
   }
 
+  std::vector<double> horizon_before(ns.horizon.begin(), ns.horizon.begin() + static_cast<long>(n0));
   // Interface-horizon correction: refined nodes next to a coarser node take m times the
   // distance to it, so their families lose no volume across the interface (thesis Fig. 3.10b).
   if (spec.interface_horizon) {
@@ -243,7 +244,11 @@ RefineStats refine_nodes(Model& m, std::vector<std::uint32_t> parents, const Ada
     }
   }
 
-  rebuild_families(m, memory, n0);
+  std::vector<char> changed(ns.size(), 0);
+  for (std::size_t i = 0; i < ns.size(); ++i)
+    changed[i] = i >= n0 || (i < n0 && is_parent[i]) || (i < horizon_before.size() &&
+                                                          horizon_before[i] != ns.horizon[i]);
+  rebuild_families(m, memory, n0, changed);
   momentum_and_kinetic(ns, st.momentum_after, st.kinetic_after);
   st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return st;

@@ -7,7 +7,8 @@
 
 namespace periadapt {
 
-BondFamilies build_families(const NodeSet& nodes, const QuadratureSpec& quad) {
+BondFamilies build_families(const NodeSet& nodes, const QuadratureSpec& quad,
+                            const BondFamilies* keep, const std::vector<char>* rebuild) {
   const std::size_t n = nodes.size();
   BondFamilies fam;
   fam.offsets.assign(n + 1, 0);
@@ -18,6 +19,9 @@ BondFamilies build_families(const NodeSet& nodes, const QuadratureSpec& quad) {
     dxmax = std::max(dxmax, nodes.spacing[i]);
   }
   hmax = quadrature_search_radius(quad.rule, nodes.dim, hmax, dxmax);
+  auto copied = [&](std::size_t i) {
+    return keep && rebuild && i < keep->num_nodes() && !(*rebuild)[i];
+  };
   CellGrid grid(nodes.dim, {nodes.x[0].data(), nodes.x[1].data(), nodes.x[2].data()}, n, hmax);
 
   // Calls visit(j, 1/xi, beta) for every family member of node i, in a fixed order.
@@ -46,6 +50,10 @@ BondFamilies build_families(const NodeSet& nodes, const QuadratureSpec& quad) {
 #pragma omp parallel for schedule(dynamic, 256)
   for (std::size_t i = 0; i < n; ++i) {
     if (!(nodes.flags[i] & kActive)) continue;
+    if (copied(i)) {
+      fam.offsets[i + 1] = keep->end(i) - keep->begin(i);
+      continue;
+    }
     std::uint64_t cnt = 0;
     visit_family(i, [&](std::uint32_t, double, float) { ++cnt; });
     fam.offsets[i + 1] = cnt;
@@ -67,6 +75,16 @@ BondFamilies build_families(const NodeSet& nodes, const QuadratureSpec& quad) {
 #pragma omp for schedule(dynamic, 256)
     for (std::size_t i = 0; i < n; ++i) {
       if (!(nodes.flags[i] & kActive)) continue;
+      if (copied(i)) {
+        const std::uint64_t b = keep->begin(i), e = keep->end(i), o = fam.offsets[i];
+        std::copy(keep->neighbor.begin() + static_cast<long>(b), keep->neighbor.begin() + static_cast<long>(e),
+                  fam.neighbor.begin() + static_cast<long>(o));
+        std::copy(keep->inv_length.begin() + static_cast<long>(b), keep->inv_length.begin() + static_cast<long>(e),
+                  fam.inv_length.begin() + static_cast<long>(o));
+        std::copy(keep->beta.begin() + static_cast<long>(b), keep->beta.begin() + static_cast<long>(e),
+                  fam.beta.begin() + static_cast<long>(o));
+        continue;
+      }
       scratch.clear();
       visit_family(i, [&](std::uint32_t j, double il, float b) { scratch.push_back({j, b, il}); });
       // Sorted families: independent of the cell layout and friendlier to the caches.

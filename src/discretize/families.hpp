@@ -12,7 +12,11 @@ struct QuadratureSpec {
   double lattice_rotation = 0.0;  // radians; orientation of the (2D) cells for sub-cell sampling
 };
 
-BondFamilies build_families(const NodeSet& nodes, const QuadratureSpec& quadrature);
+// With `keep` and `rebuild`: rows of nodes not flagged in `rebuild` (and existing in `keep`) are
+// copied from `keep` as they are (bond states included), only flagged rows are searched again.
+BondFamilies build_families(const NodeSet& nodes, const QuadratureSpec& quadrature,
+                            const BondFamilies* keep = nullptr,
+                            const std::vector<char>* rebuild = nullptr);
 
 // Builds the transpose of the families (t_offsets, t_owner, t_bond), sorted by owner.
 void build_transpose(BondFamilies& bonds);
