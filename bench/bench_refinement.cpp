@@ -1,0 +1,84 @@
+// AGRS cost benchmark (issue: refinement machinery). Two ratios, each against a baseline timed
+// in the same process:
+//  1. a refinement event adding about 1% of the nodes of a 3D block (60^3 = 216,000 nodes, m = 3)
+//     against one explicit step of the whole model;
+//  2. explicit steps on a grid fully refined by AGRS (30^3 -> 60^3 children) against the same
+//     grid built directly (ids in children order vs lattice order).
+// Usage: build/bench/bench_refinement [N]   (N = nodes per edge of the fine block, default 60)
+#include <fmt/core.h>
+
+#include <chrono>
+#include <string>
+
+#include "adapt/refine.hpp"
+#include "app/simulation.hpp"
+#include "io/deck.hpp"
+#include "model/build_model.hpp"
+#include "solver/velocity_verlet.hpp"
+
+using namespace periadapt;
+using clk = std::chrono::steady_clock;
+
+namespace {
+
+std::string block_deck(int n, double h) {
+  const double L = n * h;
+  return fmt::format(
+      "model: {{dimension: 3}}\n"
+      "material: {{youngs_modulus: 72.0e9, density: 2440.0, fracture_energy: 135.0}}\n"
+      "discretization: {{spacing: {}, horizon_factor: 3.0, body: {{box: {{min: [0, 0, 0], "
+      "max: [{}, {}, {}]}}}}}}\n"
+      "initial_conditions: {{velocity: ['100*(x-{})', '100*(y-{})', '100*(z-{})']}}\n"
+      "solver: {{time_step: 2.0e-8, steps: 10}}\n",
+      h, L, L, L, 0.5 * L, 0.5 * L, 0.5 * L);
+}
+
+double seconds_per_step(Model& m, int steps) {
+  VelocityVerlet vv(m, 2e-8);
+  vv.initialize();
+  vv.step();  // warm caches
+  const auto t0 = clk::now();
+  for (int s = 0; s < steps; ++s) vv.step();
+  return std::chrono::duration<double>(clk::now() - t0).count() / steps;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int n = argc > 1 ? std::stoi(argv[1]) : 60;
+  const double h = 5e-4;
+  AdaptSpec spec;
+  spec.enabled = true;
+
+  // 1. One event adding ~1% of the nodes (a corner cube of 1/8 of 1% parents -> 8 children each).
+  Model m = build_model(parse_deck(block_deck(n, h), "block"));
+  const double step = seconds_per_step(m, 5);
+  const std::size_t want = m.nodes.size() / 100 / 7;  // parents: each adds 7 net nodes
+  std::vector<std::uint32_t> parents;
+  const double side = std::cbrt(static_cast<double>(want)) * h;
+  for (std::uint32_t i = 0; i < m.nodes.size(); ++i)
+    if (m.nodes.x[0][i] < side && m.nodes.x[1][i] < side && m.nodes.x[2][i] < side)
+      parents.push_back(i);
+  const std::size_t before = m.nodes.size();
+  const auto t0 = clk::now();
+  const RefineStats st = refine_nodes(m, parents, spec);
+  const double event = std::chrono::duration<double>(clk::now() - t0).count();
+  const double added = static_cast<double>(st.children - st.parents);
+  fmt::print("refinement event: {} parents -> {} children (+{:.2f}% nodes) in {:.3f} s = {:.2f} "
+             "explicit steps ({:.4f} s/step, {} nodes)\n",
+             st.parents, st.children, 100 * added / static_cast<double>(before), event,
+             event / step, step, before);
+
+  // 2. Fully refined vs directly built.
+  Model coarse = build_model(parse_deck(block_deck(n / 2, 2 * h), "coarse block"));
+  std::vector<std::uint32_t> all;
+  for (std::uint32_t i = 0; i < coarse.nodes.size(); ++i) all.push_back(i);
+  refine_nodes(coarse, all, spec);
+  Model direct = build_model(parse_deck(block_deck(n, h), "block"));
+  const double s_ref = seconds_per_step(coarse, 10);
+  const double s_dir = seconds_per_step(direct, 10);
+  fmt::print("fully refined grid: {:.4f} s/step, built directly: {:.4f} s/step, ratio {:.3f} "
+             "({} and {} bonds)\n",
+             s_ref, s_dir, s_ref / s_dir, coarse.bonds.num_bonds(), direct.bonds.num_bonds());
+  return 0;
+}
