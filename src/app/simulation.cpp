@@ -1,5 +1,6 @@
 #include "app/simulation.hpp"
 #include "app/snapshot_fields.hpp"
+#include "io/line_plot.hpp"
 #include "adapt/adaptor.hpp"
 
 #include "core/process_memory.hpp"
@@ -329,6 +330,22 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
     for (const auto& w : tracker.speeds()) sp.push_back({w[0], w[1]});
     c["speed_history"] = sp;  // [t_mid, v]
     j["crack"] = c;
+    if (opt.write_files && !tracker.speeds().empty()) {
+      // Tip speed over time (Eq. 6.1 windows) as CSV and a plot.
+      std::ofstream sc(dir + "/crack_speed.csv");
+      sc << "time_s,tip_speed_m_s\n";
+      PlotSeries ps{"tip speed (Eq. 6.1)", {}, {}};
+      for (const auto& w : tracker.speeds()) {
+        sc << fmt::format("{:.9e},{:.6e}\n", w[0], w[1]);
+        ps.x.push_back(w[0] * 1e6);
+        ps.y.push_back(w[1]);
+      }
+      PlotOptions po;
+      po.title = "crack tip speed";
+      po.x_label = "time (us)";
+      po.y_label = "speed (m/s)";
+      write_line_plot(dir + "/crack_speed.png", {ps}, po);
+    }
   }
   if (opt.write_files) {
     j["outputs"] = {{"pvd", vtu ? vtu->pvd_path() : ""},
