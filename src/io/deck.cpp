@@ -300,6 +300,18 @@ Deck parse_deck(const std::string& text, const std::string& name) {
   if (auto dmg = top.optional_section("damage")) {
     dk.damage = dmg->boolean("enabled", true);
     for (Section r : dmg->list("no_fail")) dk.no_fail.push_back(parse_region(r, dk.dim));
+    if (auto pd = dmg->optional_section("overlay")) {
+      // Stewart & Jeon 2019 refinement overlay: bonds re-checked on a virtual sub-grid dx / n.
+      dk.pdro.enabled = true;
+      dk.pdro.n = pd->number("n", std::nullopt, [](double v) {
+        return (v > 1.0 && v <= 20.0) ? std::string()
+                                      : std::string("the sub-grid ratio dx/dx' must be in (1, 20]");
+      });
+      if (pd->has("region")) dk.pdro.region = parse_region(pd->section("region"), dk.dim);
+      pd->finish();
+      if (dk.formulation != "pmb")
+        dmg->fail("overlay", "the refinement overlay is available for the pmb formulation only");
+    }
     dmg->finish();
   }
   // --- solver

@@ -7,6 +7,7 @@
 
 #include "core/geometry.hpp"
 #include "adapt/adapt_spec.hpp"
+#include "overlay/pdro.hpp"
 #include "discretize/grid.hpp"
 #include "discretize/partial_volume.hpp"
 #include "discretize/precrack.hpp"
@@ -73,6 +74,7 @@ struct Deck {
   // damage
   bool damage = true;
   std::vector<Shape> no_fail;
+  PdroSpec pdro;
   // solver
   enum class SolverType { Explicit, Static, Relaxation } solver = SolverType::Explicit;
   int load_steps = 1;               // relaxation

@@ -15,7 +15,7 @@ inline double g(double t) {
 // E: also the strain-energy density W_i (thesis Eq. 2.14) of the bonds intact after this call.
 template <int D, InfluenceShape S, bool E>
 std::size_t forces_kernel(NodeSet& ns, BondFamilies& bf, bool allow_breaking,
-                          std::vector<std::uint64_t>* log, double* W) {
+                          std::vector<std::uint64_t>* log, double* W, const PdroSpec* pdro) {
   const std::size_t n = ns.size();
   const double* yp = ns.cur.data();
   const std::uint8_t* flags = ns.flags.data();
@@ -83,7 +83,7 @@ std::size_t forces_kernel(NodeSet& ns, BondFamilies& bf, bool allow_breaking,
         const double ail = std::abs(il);
         const double s = r * ail - 1.0;
         const double bv = static_cast<double>(b) * yp[4 * j + 3];
-        if (il > 0.0 && s > s0) {
+        if (il > 0.0 && s > s0 && (!pdro || pdro_bond_breaks(ns, bf, i, k, s0, *pdro))) {
           beta[k] = -b;
           bw += bv;
           ++nb;
@@ -177,9 +177,9 @@ auto dispatch(int dim, InfluenceShape s, Args&&... args) {
 template <int D, InfluenceShape S>
 struct ForcesOp {
   static std::size_t run(NodeSet& ns, BondFamilies& bf, bool brk,
-                         std::vector<std::uint64_t>* log, double* W) {
-    return W ? forces_kernel<D, S, true>(ns, bf, brk, log, W)
-             : forces_kernel<D, S, false>(ns, bf, brk, log, nullptr);
+                         std::vector<std::uint64_t>* log, double* W, const PdroSpec* pdro) {
+    return W ? forces_kernel<D, S, true>(ns, bf, brk, log, W, pdro)
+             : forces_kernel<D, S, false>(ns, bf, brk, log, nullptr, pdro);
   }
 };
 template <int D, InfluenceShape S>
@@ -201,7 +201,7 @@ struct StiffnessOp {
 
 PmbStepStats pmb_forces(NodeSet& nodes, BondFamilies& bonds, InfluenceShape shape,
                         bool allow_breaking, std::vector<std::uint64_t>* broken_log,
-                        std::vector<double>* W) {
+                        std::vector<double>* W, const PdroSpec* pdro) {
   PmbStepStats st;
   double* w = nullptr;
   if (W) {
@@ -209,7 +209,8 @@ PmbStepStats pmb_forces(NodeSet& nodes, BondFamilies& bonds, InfluenceShape shap
     w = W->data();
   }
   st.newly_broken =
-      dispatch<ForcesOp>(nodes.dim, shape, nodes, bonds, allow_breaking, broken_log, w);
+      dispatch<ForcesOp>(nodes.dim, shape, nodes, bonds, allow_breaking, broken_log, w,
+                         pdro && pdro->enabled ? pdro : nullptr);
   return st;
 }
 

@@ -8,6 +8,7 @@
 #include "core/bond_families.hpp"
 #include "core/node_set.hpp"
 #include "material/micromodulus.hpp"
+#include "overlay/pdro.hpp"
 
 namespace periadapt {
 
@@ -21,9 +22,10 @@ struct PmbStepStats {
 // When `broken_log` is given, the indices of the bonds broken by this call are appended to it
 // (in no particular order) so that a step can be undone. When `W` is given, it receives the
 // strain-energy density of every node from the same pass (inactive nodes: 0).
+// `pdro`: bonds about to break are re-checked by the refinement overlay (overlay/pdro.hpp).
 PmbStepStats pmb_forces(NodeSet& nodes, BondFamilies& bonds, InfluenceShape shape,
                         bool allow_breaking, std::vector<std::uint64_t>* broken_log = nullptr,
-                        std::vector<double>* W = nullptr);
+                        std::vector<double>* W = nullptr, const PdroSpec* pdro = nullptr);
 
 // Strain-energy density W_i = 1/4 sum_j c_i g s^2 xi beta_j V_j over intact bonds (thesis 2.14).
 void pmb_energy_density(const NodeSet& nodes, const BondFamilies& bonds, InfluenceShape shape,

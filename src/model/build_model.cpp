@@ -73,6 +73,7 @@ Model build_model(const Deck& dk) {
     ns.critical_stretch[i] = mat.s0;
   }
   m.damage_enabled = dk.damage;
+  m.pdro = dk.pdro;
 
   QuadratureSpec qs;
   qs.rule = dk.quadrature;

@@ -15,6 +15,7 @@
 #include "discretize/precrack.hpp"
 #include "material/lps.hpp"
 #include "material/micromodulus.hpp"
+#include "overlay/pdro.hpp"
 #include "model/time_function.hpp"
 
 namespace periadapt {
@@ -71,6 +72,7 @@ struct Model {
   std::vector<Shape> holes;       // ... nor inside a hole
   bool surface_correction = false;
   bool dual_horizon = false;  // explicit PMB in the dual-horizon form (bonds.t_* maintained)
+  PdroSpec pdro;              // refinement overlay for bond failure (PMB)
   mutable LpsScratch lps_scratch;  // per-node weighted volume and dilatation (LPS)
 };
 

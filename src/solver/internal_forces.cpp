@@ -12,7 +12,8 @@ std::size_t internal_forces(Model& m, bool allow_breaking, std::vector<std::uint
                       m.lps_scratch, log, W);
   if (m.dual_horizon)
     return pmb_dual_forces(m.nodes, m.bonds, m.material.shape, allow_breaking, log, W);
-  return pmb_forces(m.nodes, m.bonds, m.material.shape, allow_breaking, log, W).newly_broken;
+  return pmb_forces(m.nodes, m.bonds, m.material.shape, allow_breaking, log, W, &m.pdro)
+      .newly_broken;
 }
 
 void energy_density(const Model& m, std::vector<double>& W) {

@@ -1,0 +1,28 @@
+#pragma once
+// Peridynamic refinement overlay (Stewart & Jeon 2019, section 2, Eq. 5): before a bond I-J
+// breaks, it is re-checked on a virtual sub-grid of spacing dx' = dx/n along it: points
+//   i = I + dx' e,  i' = C - dx'/2 e,  j' = C + dx'/2 e,  j = J - dx' e   (C the midpoint),
+// whose displacements come from the PDDO over the material points of both families (damaged
+// ones included). The bond breaks only if one of the sub-pairs I-i, i'-j', j-J is stretched
+// beyond s0' = s0 sqrt(n); otherwise it stays and is checked again later. dx is the bond's
+// reference length. No node is added: the strength of the coarse grid follows the target dx'.
+#include <cstdint>
+#include <optional>
+
+#include "core/bond_families.hpp"
+#include "core/geometry.hpp"
+#include "core/node_set.hpp"
+
+namespace periadapt {
+
+struct PdroSpec {
+  bool enabled = false;
+  double n = 2.0;               // dx / dx'
+  std::optional<Shape> region;  // bonds whose owner lies inside (default: everywhere)
+};
+
+// True when bond k of node i breaks under the overlay (its plain stretch already exceeds s0).
+bool pdro_bond_breaks(const NodeSet& nodes, const BondFamilies& bonds, std::size_t i,
+                      std::uint64_t k, double s0, const PdroSpec& spec);
+
+}  // namespace periadapt
