@@ -15,6 +15,7 @@
 #include "adapt/refine.hpp"
 #include "studies/bobaru_1d_static.hpp"
 #include "studies/bobaru_1d_wave.hpp"
+#include "studies/wave_patch_2d.hpp"
 #include "studies/static_plate_2d.hpp"
 #include "studies/static_plate_refined.hpp"
 #include "io/deck.hpp"
@@ -114,7 +115,8 @@ int main(int argc, char** argv) {
   study->add_option("name", study_name, "study name")
       ->required()
       ->check(CLI::IsMember(
-          {"bobaru-1d-static", "bobaru-1d-wave", "static-plate-2d", "static-plate-refined"}));
+          {"bobaru-1d-static", "bobaru-1d-wave", "static-plate-2d", "static-plate-refined",
+           "wave-patch-2d"}));
   study->add_option("--out", out, "directory for the study's CSV files");
   try {
     app.parse(argc, argv);
@@ -128,6 +130,7 @@ int main(int argc, char** argv) {
       if (!out.empty()) std::filesystem::create_directories(out);
       if (study_name == "static-plate-2d") return run_static_plate_study(out);
       if (study_name == "bobaru-1d-wave") return run_bobaru_1d_wave_study(out);
+      if (study_name == "wave-patch-2d") return run_wave_patch_study(out);
       if (study_name == "static-plate-refined") return run_static_plate_refined_study(out);
       return run_bobaru_1d_study(out);
     }
