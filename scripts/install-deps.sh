@@ -7,6 +7,15 @@ missing=()
 for p in "${pkgs[@]}"; do dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "ok installed" || missing+=("$p"); done
 if ((${#missing[@]})); then
   export DEBIAN_FRONTEND=noninteractive
-  apt-get update -qq
-  apt-get install -y -qq --no-install-recommends "${missing[@]}"
+  as_root=()
+  if [[ $(id -u) -ne 0 ]]; then
+    if command -v sudo > /dev/null; then
+      as_root=(sudo -E)
+    else
+      echo "install-deps.sh: missing Debian packages (${missing[*]}); run as root or install sudo" >&2
+      exit 1
+    fi
+  fi
+  "${as_root[@]}" apt-get update -qq
+  "${as_root[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
