@@ -3,7 +3,8 @@
 # our numbers beside the published ones, damage pictures, tip-speed CSVs and plots:
 #   out/report/README.md
 # Crack branching 6.1: uniform level 0 (1 mm), uniform level 1 (0.5 mm), adaptive 0 -> 1;
-# Kalthoff-Winkler 6.2: adaptive level 1. Usage: scripts/fracture-report.sh [OUT] (about 1 min).
+# Kalthoff-Winkler 6.2: adaptive level 1; 3D branching (end of 6.1): adaptive level 1.
+# Usage: scripts/fracture-report.sh [OUT] (about 10 s on 2 cores).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out="${1:-out/report}"
@@ -19,6 +20,7 @@ run branching_L0 "$out/crack_branching_2d_level0.yaml"
 run branching_L1 examples/crack_branching_2d.yaml
 run branching_adaptive examples/crack_branching_2d_adaptive.yaml
 run kalthoff_winkler examples/kalthoff_winkler_2d_adaptive.yaml
+run branching_3d examples/crack_branching_3d_adaptive.yaml
 num() {  # summary key -> value (first match), "-" when null or absent
   local v
   v=$(grep -m1 "\"$2\"" "$out/$1/summary.json" | sed -E 's/.*: *//; s/,$//')
@@ -62,6 +64,14 @@ row() {  # name label published...
   echo "| $(num kalthoff_winkler final) | $(us "$(num kalthoff_winkler initiation_time_s)") | $(f2 "$(num kalthoff_winkler path_angle_deg)") | $(f0 "$(num kalthoff_winkler max_speed_m_s)") | $(f2 "$(num kalthoff_winkler wall_time_s)") | 5,000 + 4,453 nodes, t_i about 24 us, 68 deg, 1,981 m/s |"
   echo
   for p in "$out/kalthoff_winkler"/damage_*.png; do echo "![$(basename "$p")](kalthoff_winkler/$(basename "$p"))"; done
+  echo
+  echo "## Crack branching 3D, Duran 50 glass (thesis 6.1, Fig. 6.5, level 1)"
+  echo
+  echo "| nodes (initial -> final) | t_i (us) | t_b (us) | mean tip speed (m/s) | wall (s) | published |"
+  echo "|---|---|---|---|---|---|"
+  echo "| $(num branching_3d initial) -> $(num branching_3d final) | $(us "$(num branching_3d initiation_time_s)") | $(us "$(num branching_3d branching_time_s)") | $(f0 "$(num branching_3d mean_speed_m_s)") | $(f2 "$(num branching_3d wall_time_s)") | 12,000 -> 26,644 nodes, branches (qualitative) |"
+  echo
+  for p in "$out/branching_3d"/damage_*.png; do echo "![$(basename "$p")](branching_3d/$(basename "$p"))"; done
   echo
   echo "Published numbers: Dipasquale, PhD thesis (2016), Tables 6.2-6.5; see docs and the closing notes for the known differences."
 } > "$out/README.md"
