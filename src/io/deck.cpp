@@ -337,6 +337,9 @@ Deck parse_deck(const std::string& text, const std::string& name) {
         return v >= 1 ? std::string() : std::string("must be >= 1");
       });
     } else if (dk.solver == Deck::SolverType::Static) {
+      if (dk.formulation == "lps")
+        s.fail("type", "the linear static solve assembles the bond-based stiffness; for the LPS "
+                       "model use type: relaxation");
       // Linearized equilibrium: no time stepping keys, no bond breaking.
       for (const char* k : {"time_step", "end_time", "steps", "safety_factor",
                             "allow_unstable_time_step"})
@@ -360,9 +363,6 @@ Deck parse_deck(const std::string& text, const std::string& name) {
     dk.dual_horizon =
         s.choice("bond_pairing", {"source_horizon", "dual_horizon"}, "source_horizon") ==
         "dual_horizon";
-    if (dk.dual_horizon && dk.formulation == "lps")
-      s.fail("bond_pairing", "the dual-horizon form is available for the bond-based pmb model "
-                             "only");
     s.finish();
   }
   if (dk.damage && !dk.G0 && !dk.s0)

@@ -1,12 +1,16 @@
 #include "solver/internal_forces.hpp"
 
 #include "material/pmb.hpp"
+#include "material/lps_dual.hpp"
 #include "material/pmb_dual.hpp"
 
 namespace periadapt {
 
 std::size_t internal_forces(Model& m, bool allow_breaking, std::vector<std::uint64_t>* log,
                             std::vector<double>* W) {
+  if (m.material.lps && m.dual_horizon)
+    return lps_dual_forces(m.nodes, m.bonds, m.material.shape, m.material.lps_constants,
+                           allow_breaking, m.lps_scratch, log, W);
   if (m.material.lps)
     return lps_forces(m.nodes, m.bonds, m.material.shape, m.material.lps_constants, allow_breaking,
                       m.lps_scratch, log, W);

@@ -1,0 +1,95 @@
+#include "material/lps_dual.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace periadapt {
+
+namespace {
+
+double bond_extension(const NodeSet& ns, std::size_t a, std::size_t b, double x, double d[3]) {
+  double r2 = 0;
+  for (int e = 0; e < ns.dim; ++e) {
+    d[e] = ns.cur[4 * b + static_cast<std::size_t>(e)] - ns.cur[4 * a + static_cast<std::size_t>(e)];
+    r2 += d[e] * d[e];
+  }
+  return std::sqrt(r2) - x;
+}
+
+}  // namespace
+
+std::size_t lps_dual_forces(NodeSet& ns, BondFamilies& bf, InfluenceShape shape,
+                            const LpsConstants& c, bool allow_breaking, LpsScratch& sc,
+                            std::vector<std::uint64_t>* log, std::vector<double>* Wout) {
+  const std::size_t n = ns.size();
+  // 1. Breaking, each owner on its own memberships.
+  std::vector<std::uint64_t> newly;
+  if (allow_breaking) {
+#pragma omp parallel
+    {
+      std::vector<std::uint64_t> mine;
+#pragma omp for schedule(dynamic, 512)
+      for (std::size_t i = 0; i < n; ++i) {
+        if (!(ns.flags[i] & kActive) || (ns.flags[i] & kNoFail)) continue;
+        const double s0 = ns.critical_stretch[i];
+        for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {
+          if (!BondFamilies::intact(bf.beta[k]) || bf.inv_length[k] < 0.0) continue;
+          double d[3];
+          const double x = bf.length(k);
+          if (bond_extension(ns, i, bf.neighbor[k], x, d) > s0 * x) mine.push_back(k);
+        }
+      }
+#pragma omp critical(lps_dual_broken)
+      newly.insert(newly.end(), mine.begin(), mine.end());
+    }
+    std::sort(newly.begin(), newly.end());
+    std::size_t o = 0;
+    for (std::uint64_t k : newly) {
+      while (bf.end(o) <= k) ++o;
+      ns.broken_weight[o] += static_cast<double>(bf.beta[k]) * ns.volume[bf.neighbor[k]];
+      bf.beta[k] = -bf.beta[k];
+      if (log) log->push_back(k);
+    }
+  }
+  // 2. Weighted volumes and dilatations (the plain kernel's first pass, via its energy path).
+  std::vector<double> W;
+  lps_energy_density(ns, bf, shape, c, sc, W);  // fills sc.m, sc.theta
+  if (Wout) *Wout = W;
+  // 3. Forces: own memberships with i's state, dual memberships with the owner's state.
+  const double Dk = c.D * c.kappa, am = c.alpha * c.mu, invD = 1.0 / c.D;
+  auto t_state = [&](std::size_t owner, double x, double e) {
+    const double m = sc.m[owner], th = sc.theta[owner];
+    if (!(m > 0)) return 0.0;
+    const double w = influence(shape, std::min(1.0, x / ns.horizon[owner]));
+    return (Dk * th * w * x + am * w * (e - th * x * invD)) / m;
+  };
+#pragma omp parallel for schedule(dynamic, 512)
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!(ns.flags[i] & kActive)) continue;
+    double a[3] = {0, 0, 0};
+    for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {
+      if (!BondFamilies::intact(bf.beta[k])) continue;
+      const std::size_t j = bf.neighbor[k];
+      const double x = bf.length(k);
+      double d[3];
+      const double e = bond_extension(ns, i, j, x, d);
+      const double fr = t_state(i, x, e) * static_cast<double>(bf.beta[k]) * ns.volume[j] / (x + e);
+      for (int q = 0; q < ns.dim; ++q) a[q] += fr * d[q];
+    }
+    for (std::uint64_t q = bf.t_offsets[i]; q < bf.t_offsets[i + 1]; ++q) {
+      const std::uint64_t k = bf.t_bond[q];
+      if (!BondFamilies::intact(bf.beta[k])) continue;
+      const std::size_t o = bf.t_owner[q];
+      const double x = bf.length(k);
+      double d[3];
+      const double e = bond_extension(ns, i, o, x, d);
+      // Reaction of o's membership on i: its force state times o's volume (per unit volume of i).
+      const double fr = t_state(o, x, e) * static_cast<double>(bf.beta[k]) * ns.volume[o] / (x + e);
+      for (int p = 0; p < ns.dim; ++p) a[p] += fr * d[p];
+    }
+    for (int p = 0; p < ns.dim; ++p) ns.f[p][i] = a[p];
+  }
+  return newly.size();
+}
+
+}  // namespace periadapt
