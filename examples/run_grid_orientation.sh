@@ -3,17 +3,21 @@
 # examples/grid_orientation_pmb.yaml, grids rotated by 0, 5, 10, 20, 30, 40 deg.
 # The thesis prints 0.8 MPa; with s0 = 2.107e-4 (G0 = 7 J/m^2) that load cannot start the crack
 # (static G = 0.68 J/m^2), so the sweep uses LOAD (default 1.6 MPa, a single running crack).
-# Usage: examples/run_grid_orientation.sh [LOAD_PA] [END_TIME_S] [OUT]
+# Usage: examples/run_grid_orientation.sh [LOAD_PA] [END_TIME_S] [OUT] [DECK]
+#   DECK = examples/grid_orientation_lps.yaml sweeps the state-based case (printed load 0.7 MPa;
+#   1.0e6 runs a single crack).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 load="${1:-1.6e6}"; end="${2:-250.0e-6}"; out="${3:-out/grid_orientation}"
+deck="${4:-examples/grid_orientation_pmb.yaml}"
+printed=$(grep -m1 -o 'value: \[0.0, [0-9.e]*\]' "$deck" | sed -E 's/.*, ([0-9.e]+)\]/\1/')
 mkdir -p "$out"
 echo "| grid angle (deg) | crack path angle (deg) | initiation (us) |"
 echo "|---|---|---|"
 for a in 0 5 10 20 30 40; do
-  sed -e "s/value: \[0.0, 0.8e6\]/value: [0.0, $load]/" -e "s/value: \[0.0, -0.8e6\]/value: [0.0, -$load]/" \
-      -e "s/rotation_deg: 0.0/rotation_deg: $a/" -e "s/end_time: 560.0e-6/end_time: $end/" \
-      examples/grid_orientation_pmb.yaml > "$out/deck_$a.yaml"
+  sed -e "s/value: \[0.0, $printed\]/value: [0.0, $load]/" -e "s/value: \[0.0, -$printed\]/value: [0.0, -$load]/" \
+      -e "s/rotation_deg: 0.0/rotation_deg: $a/" -e "s/end_time: [0-9.]*e-6/end_time: $end/" \
+      "$deck" > "$out/deck_$a.yaml"
   ./build/periadapt run "$out/deck_$a.yaml" --out "$out/angle_$a" --quiet > /dev/null
   s="$out/angle_$a/summary.json"
   ang=$(grep -m1 '"path_angle_deg"' "$s" | sed -E 's/.*: *([-0-9.eE+]+).*/\1/' || true)
