@@ -1,6 +1,5 @@
 #include "material/lps.hpp"
 
-#include <array>
 #include <cmath>
 
 namespace periadapt {
@@ -199,14 +198,71 @@ std::size_t lps_forces(NodeSet& ns, BondFamilies& bf, InfluenceShape shape, cons
   return forces_dim<false>(shape, ns, bf, c, allow_breaking, sc, log, nullptr);
 }
 
+namespace {
+
+template <int D, InfluenceShape S>
+void energy(const NodeSet& ns, const BondFamilies& bf, const LpsConstants& c,
+            const LpsScratch& sc, std::vector<double>& W) {
+  const std::size_t n = ns.size();
+  W.assign(n, 0.0);
+  const double* yp = ns.cur.data();
+#pragma omp parallel for schedule(dynamic, 512)
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!(ns.flags[i] & kActive) || !(sc.m[i] > 0)) continue;
+    const double Ci = sc.packed[4 * i + 2], idi = sc.packed[4 * i + 3];
+    double wdev = 0;
+    for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {
+      const float b = bf.beta[k];
+      if (!(b > 0.0f)) continue;
+      const std::size_t j = 4 * static_cast<std::size_t>(bf.neighbor[k]);
+      const double x = bf.length(k);
+      double r2 = 0;
+      for (int d = 0; d < D; ++d) r2 += std::pow(yp[j + d] - yp[4 * i + d], 2);
+      const double ed = std::sqrt(r2) - x - Ci * x;
+      wdev += omega<S>(x * idi) * ed * ed * yp[j + 3] * static_cast<double>(b);
+    }
+    W[i] = 0.5 * c.kappa * sc.theta[i] * sc.theta[i] + 0.5 * sc.packed[4 * i + 1] * wdev;
+  }
+}
+
+template <template <int, InfluenceShape> class Op, class... A>
+void by_dim_shape(int dim, InfluenceShape s, A&&... a) {
+  auto go = [&]<int D>() {
+    switch (s) {
+      case InfluenceShape::Constant: Op<D, InfluenceShape::Constant>::run(a...); break;
+      case InfluenceShape::Triangular: Op<D, InfluenceShape::Triangular>::run(a...); break;
+      default: Op<D, InfluenceShape::InvertedTriangular>::run(a...);
+    }
+  };
+  if (dim == 3) go.template operator()<3>();
+  else go.template operator()<2>();
+}
+
+template <int D, InfluenceShape S>
+struct DilatationOp {
+  static void run(const NodeSet& ns, const BondFamilies& bf, const LpsConstants& c, LpsScratch& sc) {
+    dilatation<D, S>(ns, bf, c, sc);
+  }
+};
+template <int D, InfluenceShape S>
+struct EnergyOp {
+  static void run(const NodeSet& ns, const BondFamilies& bf, const LpsConstants& c,
+                  LpsScratch& sc, std::vector<double>& W) {
+    energy<D, S>(ns, bf, c, sc, W);
+  }
+};
+
+}  // namespace
+
+void lps_dilatation(const NodeSet& ns, const BondFamilies& bf, InfluenceShape shape,
+                    const LpsConstants& c, LpsScratch& sc) {
+  by_dim_shape<DilatationOp>(ns.dim, shape, ns, bf, c, sc);
+}
+
 void lps_energy_density(const NodeSet& ns, const BondFamilies& bf, InfluenceShape shape,
                         const LpsConstants& c, LpsScratch& sc, std::vector<double>& W) {
-  // The energy-writing force pass on scratch copies of the forces (nothing breaks).
-  NodeSet& mns = const_cast<NodeSet&>(ns);
-  BondFamilies& mbf = const_cast<BondFamilies&>(bf);
-  const std::array<std::vector<double>, 3> f = ns.f;
-  lps_forces(mns, mbf, shape, c, false, sc, nullptr, &W);
-  mns.f = f;
+  lps_dilatation(ns, bf, shape, c, sc);
+  by_dim_shape<EnergyOp>(ns.dim, shape, ns, bf, c, sc, W);
 }
 
 }  // namespace periadapt

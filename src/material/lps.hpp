@@ -46,6 +46,10 @@ std::size_t lps_forces(NodeSet& nodes, BondFamilies& bonds, InfluenceShape shape
                        const LpsConstants& c, bool allow_breaking, LpsScratch& scratch,
                        std::vector<std::uint64_t>* broken_log, std::vector<double>* W);
 
+// Weighted volume and dilatation of every active node into `scratch` (the first pass).
+void lps_dilatation(const NodeSet& nodes, const BondFamilies& bonds, InfluenceShape shape,
+                    const LpsConstants& c, LpsScratch& scratch);
+
 // Strain-energy density W_i = kappa theta^2 / 2 + (alpha mu / (2 m)) sum w (e^d)^2 beta V.
 void lps_energy_density(const NodeSet& nodes, const BondFamilies& bonds, InfluenceShape shape,
                         const LpsConstants& c, LpsScratch& scratch, std::vector<double>& W);
