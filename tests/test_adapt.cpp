@@ -26,6 +26,23 @@ const char* kPlate =
     "cracks: [{segment: [[0, 0.008], [0.0121, 0.008]]}]\n"
     "solver: {time_step: 5.0e-8, steps: 10}\n";
 
+// A pre-cracked 40 mm x 20 mm glass plate pulled by edge tractions, with an adapt section.
+std::string cracked_plate_deck(double traction, const std::string& adapt, int steps) {
+  const std::string t = std::to_string(traction);
+  return "model: {dimension: 2, plane: stress}\n"
+         "material: {youngs_modulus: 72.0e9, density: 2440, fracture_energy: 135}\n"
+         "discretization: {spacing: 0.001, horizon_factor: 3, body: {box: {min: [0, 0], max: "
+         "[0.04, 0.02]}}}\n"
+         "cracks: [{segment: [[0, 0.01], [0.015, 0.01]]}]\n"
+         "loads:\n"
+         " - {type: traction, region: {box: {min: [0, 0.019], max: [0.04, 0.02]}}, value: [0, " + t + "]}\n"
+         " - {type: traction, region: {box: {min: [0, 0], max: [0.04, 0.001]}}, value: [0, -" + t + "]}\n"
+         "damage: {no_fail: [{box: {min: [0, 0.019], max: [0.04, 0.02]}}, {box: {min: [0, 0], "
+         "max: [0.04, 0.001]}}]}\n"
+         "adapt: " + adapt + "\n"
+         "solver: {time_step: 5.0e-8, steps: " + std::to_string(steps) + "}\n";
+}
+
 std::vector<std::uint32_t> all_active(const Model& m) {
   std::vector<std::uint32_t> ids;
   for (std::uint32_t i = 0; i < m.nodes.size(); ++i)
@@ -125,19 +142,7 @@ TEST(Adapt, FullyRefinedGridEqualsTheGridBuiltDirectly) {
 TEST(Adapt, WithTheDamageTriggerBondsBreakOnlyOnTheFinestLevel) {
   // A pre-cracked plate pulled hard: every bond that the dynamics breaks must belong to nodes
   // that could not be refined further (the step is undone and redone after refining).
-  const std::string yaml =
-      "model: {dimension: 2, plane: stress}\n"
-      "material: {youngs_modulus: 72.0e9, density: 2440, fracture_energy: 135}\n"
-      "discretization: {spacing: 0.001, horizon_factor: 3, body: {box: {min: [0, 0], max: [0.04, "
-      "0.02]}}}\n"
-      "cracks: [{segment: [[0, 0.01], [0.015, 0.01]]}]\n"
-      "loads:\n"
-      " - {type: traction, region: {box: {min: [0, 0.019], max: [0.04, 0.02]}}, value: [0, 60.0e6]}\n"
-      " - {type: traction, region: {box: {min: [0, 0], max: [0.04, 0.001]}}, value: [0, -60.0e6]}\n"
-      "damage: {no_fail: [{box: {min: [0, 0.019], max: [0.04, 0.02]}}, {box: {min: [0, 0], max: "
-      "[0.04, 0.001]}}]}\n"
-      "adapt: {max_level: 1, damage_trigger: true}\n"
-      "solver: {time_step: 5.0e-8, steps: 200}\n";
+  const std::string yaml = cracked_plate_deck(60.0e6, "{max_level: 1, damage_trigger: true}", 200);
   const Deck dk = test::deck_from(yaml);
   Model m = build_model(dk);
   const std::size_t n0 = m.nodes.size();
@@ -281,17 +286,7 @@ TEST(Adapt, DualHorizonDynamicsConservesMomentumOnARefinedGrid) {
         pairing + "}\n";
     const Deck dk = test::deck_from(yaml);
     Model m = build_model(dk);
-    VelocityVerlet vv(m, 2e-8);
-    vv.initialize();
-    const auto p0 = linear_momentum(m.nodes);
-    double scale = 0;
-    for (std::size_t i = 0; i < m.nodes.size(); ++i)
-      if (m.nodes.flags[i] & kActive)
-        scale += m.nodes.density[i] * m.nodes.volume[i] *
-                 (std::abs(m.nodes.v[0][i]) + std::abs(m.nodes.v[1][i]));
-    for (int s = 0; s < 60; ++s) ASSERT_TRUE(vv.step());
-    const auto p1 = linear_momentum(m.nodes);
-    drift[v++] = std::hypot(p1[0] - p0[0], p1[1] - p0[1]) / scale;
+    drift[v++] = test::momentum_drift(m, 2e-8, 60);
   }
   EXPECT_GT(drift[0], 1e-9) << "the plain form should show the ghost-force drift";
   EXPECT_LT(drift[1], 1e-12);
@@ -304,19 +299,8 @@ TEST(Adapt, DualHorizonDynamicsConservesMomentumOnARefinedGrid) {
 TEST(Adapt, LocalFamilyRebuildEqualsTheGlobalOne) {
   // Refinement rebuilds only the families within reach of the changed nodes; a run with the
   // whole model rebuilt at every event (PERIADAPT_GLOBAL_REBUILD) must give the same state.
-  const std::string yaml =
-      "model: {dimension: 2, plane: stress}\n"
-      "material: {youngs_modulus: 72.0e9, density: 2440, fracture_energy: 135}\n"
-      "discretization: {spacing: 0.001, horizon_factor: 3, body: {box: {min: [0, 0], max: [0.04, "
-      "0.02]}}}\n"
-      "cracks: [{segment: [[0, 0.01], [0.015, 0.01]]}]\n"
-      "loads:\n"
-      " - {type: traction, region: {box: {min: [0, 0.019], max: [0.04, 0.02]}}, value: [0, 40.0e6]}\n"
-      " - {type: traction, region: {box: {min: [0, 0], max: [0.04, 0.001]}}, value: [0, -40.0e6]}\n"
-      "damage: {no_fail: [{box: {min: [0, 0.019], max: [0.04, 0.02]}}, {box: {min: [0, 0], max: "
-      "[0.04, 0.001]}}]}\n"
-      "adapt: {max_level: 1, energy_trigger: 0.5, damage_trigger: true}\n"
-      "solver: {time_step: 5.0e-8, steps: 150}\n";
+  const std::string yaml = cracked_plate_deck(
+      40.0e6, "{max_level: 1, energy_trigger: 0.5, damage_trigger: true}", 150);
   std::vector<double> result[2];
   for (int global = 0; global < 2; ++global) {
     if (global) setenv("PERIADAPT_GLOBAL_REBUILD", "1", 1);

@@ -51,4 +51,20 @@ inline EnergyRun run_energy_history(const std::string& yaml, int every = 1) {
   return r;
 }
 
+// Linear-momentum change over `steps` explicit steps, relative to sum m |v| at the start.
+inline double momentum_drift(Model& m, double dt, int steps) {
+  VelocityVerlet vv(m, dt);
+  vv.initialize();
+  const auto p0 = linear_momentum(m.nodes);
+  double scale = 0;
+  for (std::size_t i = 0; i < m.nodes.size(); ++i)
+    if (m.nodes.flags[i] & kActive)
+      for (int d = 0; d < m.nodes.dim; ++d)
+        scale += m.nodes.density[i] * m.nodes.volume[i] * std::abs(m.nodes.v[d][i]);
+  for (int s = 0; s < steps; ++s)
+    if (!vv.step()) return INFINITY;
+  const auto p1 = linear_momentum(m.nodes);
+  return std::hypot(p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]) / scale;
+}
+
 }  // namespace periadapt::test

@@ -186,17 +186,7 @@ TEST(Lps, DualHorizonFormMatchesOnUniformGridsAndConservesMomentumOnRefinedOnes)
   int v = 0;
   for (const char* pairing : {"source_horizon", "dual_horizon"}) {
     Model m = build_model(test::deck_from(deck(pairing, refine)));
-    VelocityVerlet vv(m, 2e-8);
-    vv.initialize();
-    const auto p0 = linear_momentum(m.nodes);
-    double scale = 0;
-    for (std::size_t i = 0; i < m.nodes.size(); ++i)
-      if (m.nodes.flags[i] & kActive)
-        scale += m.nodes.density[i] * m.nodes.volume[i] *
-                 (std::abs(m.nodes.v[0][i]) + std::abs(m.nodes.v[1][i]));
-    for (int s = 0; s < 60; ++s) ASSERT_TRUE(vv.step());
-    const auto p1 = linear_momentum(m.nodes);
-    drift[v++] = std::hypot(p1[0] - p0[0], p1[1] - p0[1]) / scale;
+    drift[v++] = test::momentum_drift(m, 2e-8, 60);
   }
   EXPECT_GT(drift[0], 1e-9);
   EXPECT_LT(drift[1], 1e-12);
