@@ -33,11 +33,6 @@ bool has_dynamic_break(const Model& m, std::size_t i) {
   return false;
 }
 
-void totals(const NodeSet& ns, double p[3], double& K) {
-  const auto mom = linear_momentum(ns);
-  for (int d = 0; d < 3; ++d) p[d] = mom[static_cast<std::size_t>(d)];
-  K = kinetic_energy(ns);
-}
 
 }  // namespace
 
@@ -64,7 +59,8 @@ RefineStats coarsen_nodes(Model& m, const std::vector<std::uint32_t>& parents) {
   RefineStats st;
   NodeSet& ns = m.nodes;
   if (parents.empty()) return st;
-  totals(ns, st.momentum_before, st.kinetic_before);
+  st.momentum_before = linear_momentum(ns);
+  st.kinetic_before = kinetic_energy(ns);
   const auto ch = children_of(ns);
   std::vector<char> vanishing(ns.size(), 0);
   for (std::uint32_t p : parents)
@@ -99,7 +95,8 @@ RefineStats coarsen_nodes(Model& m, const std::vector<std::uint32_t>& parents) {
   std::vector<char> changed(vanishing);
   for (std::uint32_t p : parents) changed[p] = 1;
   rebuild_families(m, memory, ns.size(), changed);
-  totals(ns, st.momentum_after, st.kinetic_after);
+  st.momentum_after = linear_momentum(ns);
+  st.kinetic_after = kinetic_energy(ns);
   st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return st;
 }

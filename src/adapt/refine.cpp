@@ -16,11 +16,6 @@ namespace periadapt {
 
 namespace {
 
-void momentum_and_kinetic(const NodeSet& ns, double p[3], double& K) {
-  const auto mom = linear_momentum(ns);
-  for (int d = 0; d < 3; ++d) p[d] = mom[static_cast<std::size_t>(d)];
-  K = kinetic_energy(ns);
-}
 
 // Least-squares gradient of field F (dim components) over the parent's visible family, solved by
 // the normal equations; zero when the family is degenerate (fewer than dim independent bonds).
@@ -108,7 +103,8 @@ RefineStats refine_nodes(Model& m, std::vector<std::uint32_t> parents, const Ada
   std::sort(parents.begin(), parents.end());
   parents.erase(std::unique(parents.begin(), parents.end()), parents.end());
   if (parents.empty()) return st;
-  momentum_and_kinetic(ns, st.momentum_before, st.kinetic_before);
+  st.momentum_before = linear_momentum(ns);
+  st.kinetic_before = kinetic_energy(ns);
   const std::size_t n0 = ns.size();
   std::vector<char> is_parent(n0, 0);
   for (std::uint32_t p : parents) is_parent[p] = 1;
@@ -249,7 +245,8 @@ RefineStats refine_nodes(Model& m, std::vector<std::uint32_t> parents, const Ada
     changed[i] = i >= n0 || (i < n0 && is_parent[i]) || (i < horizon_before.size() &&
                                                           horizon_before[i] != ns.horizon[i]);
   rebuild_families(m, memory, n0, changed);
-  momentum_and_kinetic(ns, st.momentum_after, st.kinetic_after);
+  st.momentum_after = linear_momentum(ns);
+  st.kinetic_after = kinetic_energy(ns);
   st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return st;
 }

@@ -10,6 +10,7 @@
 // Families are then rebuilt. Bonds keep their broken state where both ends survive; new bonds
 // that cross a pre-crack or the facet of a bond broken before the event start broken, so cracks
 // do not heal on refinement.
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -21,8 +22,8 @@ namespace periadapt {
 struct RefineStats {
   std::size_t parents = 0;
   std::size_t children = 0;
-  double momentum_before[3] = {0, 0, 0};
-  double momentum_after[3] = {0, 0, 0};
+  std::array<double, 3> momentum_before{0, 0, 0};
+  std::array<double, 3> momentum_after{0, 0, 0};
   double kinetic_before = 0, kinetic_after = 0;
   double seconds = 0;
 };
