@@ -16,6 +16,7 @@
 #include "studies/bobaru_1d_static.hpp"
 #include "studies/bobaru_1d_wave.hpp"
 #include "studies/wave_patch_2d.hpp"
+#include "studies/pdro_bar.hpp"
 #include "studies/static_plate_2d.hpp"
 #include "studies/static_plate_refined.hpp"
 #include "io/deck.hpp"
@@ -116,8 +117,14 @@ int main(int argc, char** argv) {
       ->required()
       ->check(CLI::IsMember(
           {"bobaru-1d-static", "bobaru-1d-wave", "static-plate-2d", "static-plate-refined",
-           "wave-patch-2d"}));
+           "wave-patch-2d", "pdro-bar"}));
   study->add_option("--out", out, "directory for the study's CSV files");
+  PdroBarOptions bar;
+  bool bar_quick = false;
+  study->add_flag("--pim", bar.pim, "pdro-bar: overlay interpolation by PIM instead of PDDO");
+  study->add_flag("--quick", bar_quick, "pdro-bar: targets 0.9, 0.5, 0.2 mm only");
+  study->add_option("--threads", threads, "OpenMP threads (default: all cores)")
+      ->check(CLI::PositiveNumber);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -132,6 +139,10 @@ int main(int argc, char** argv) {
       if (study_name == "bobaru-1d-wave") return run_bobaru_1d_wave_study(out);
       if (study_name == "wave-patch-2d") return run_wave_patch_study(out);
       if (study_name == "static-plate-refined") return run_static_plate_refined_study(out);
+      if (study_name == "pdro-bar") {
+        if (bar_quick) bar.targets = {0.9e-3, 0.5e-3, 0.2e-3};
+        return run_pdro_bar_study(out, bar);
+      }
       return run_bobaru_1d_study(out);
     }
     RunOptions ro;

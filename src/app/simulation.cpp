@@ -94,7 +94,7 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
                : dk.output.tip_side == "lower" ? CrackTipOptions::Side::Lower
                                                : CrackTipOptions::Side::Both;
     tip.window = dk.output.tip_window;
-    tip.advance = m.grid_spacing;
+    tip.advance = dk.output.tip_advance ? *dk.output.tip_advance : m.grid_spacing;
     tip.column = m.grid_spacing;
     tip.branch_gap = dk.output.branch_gap ? *dk.output.branch_gap : m.horizon;
     // Two grid spacings bridge the gaps a crack band has on any level; the pre-crack's own band
@@ -301,6 +301,14 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
                        {"time_s", e.time},
                        {"position", {ns.x[0][e.node], ns.x[1][e.node], ns.x[2][e.node]}},
                        {"reason", e.what}};
+  }
+  if (m.pdro.enabled) {
+    const double checks = static_cast<double>(m.pdro.counters->checks.load());
+    j["overlay"] = {{"n", m.pdro.n},
+                    {"checks", m.pdro.counters->checks.load()},
+                    {"breaks", m.pdro.counters->breaks.load()},
+                    {"checks_per_bond_evaluation",
+                     vv.bond_evaluations() > 0 ? checks / vv.bond_evaluations() : 0.0}};
   }
   if (track) {
     nlohmann::json c;

@@ -24,6 +24,7 @@ std::size_t generate_grid(const GridSpec& s, NodeSet& nodes) {
 
   auto keep = [&](const Vec3& p) {
     if (!s.body.contains(p, tol)) return false;
+    if (s.clip && !s.clip->contains(p, tol)) return false;
     for (const Shape& h : s.holes)
       if (h.contains(p)) return false;
     return true;

@@ -1,6 +1,7 @@
 #pragma once
 // Uniform particle grids in 1D (bar), 2D (rectangle with thickness) and 3D (box), optionally
 // rotated (2D) and clipped to the body, with holes removed.
+#include <optional>
 #include <vector>
 
 #include "core/geometry.hpp"
@@ -19,6 +20,7 @@ struct GridSpec {
   Vec3 pivot{0, 0, 0};           // rotation centre (default: body centre, set by the caller)
   Registration registration = Registration::CellCentered;
   std::vector<Shape> holes;
+  std::optional<Shape> clip;     // a body that is not a box (2D disk): nodes outside are dropped
 };
 
 // Appends the grid's nodes to `nodes` (volume = cell measure times thickness/area) and returns

@@ -176,6 +176,10 @@ Deck parse_deck(const std::string& text, const std::string& name) {
       s.fail("critical_stretch", "give either fracture_energy or critical_stretch, not both");
     if (s.has("fracture_energy")) dk.G0 = s.number("fracture_energy", std::nullopt, positive());
     if (s.has("critical_stretch")) dk.s0 = s.number("critical_stretch", std::nullopt, positive());
+    dk.thermal_strain = s.number("thermal_strain", 0.0, [](double v) {
+      return std::abs(v) < 0.1 ? std::string()
+                               : std::string("alpha dT is a small strain: |value| < 0.1");
+    });
     std::string sh = s.choice("micromodulus", {"constant", "triangular", "inverted_triangular"},
                               "constant");
     dk.shape = sh == "constant"     ? InfluenceShape::Constant
@@ -206,8 +210,18 @@ Deck parse_deck(const std::string& text, const std::string& name) {
     }
     Section body = s.section("body");
     Shape b = parse_region(body, dk.dim);
-    if (b.kind != Shape::Kind::Box) s.fail("body", "the body is a box (use holes to cut it)");
-    g.body = b.box;
+    if (b.kind == Shape::Kind::Disk) {
+      // A disk body: its bounding box, clipped to the disk.
+      g.clip = b;
+      for (int d = 0; d < 2; ++d) {
+        g.body.lo[d] = b.center[d] - b.radius;
+        g.body.hi[d] = b.center[d] + b.radius;
+      }
+    } else if (b.kind != Shape::Kind::Box) {
+      s.fail("body", "the body is a box, or a disk in 2D (use holes to cut it)");
+    } else {
+      g.body = b.box;
+    }
     for (int d = 0; d < dk.dim; ++d)
       if (!(g.body.hi[d] - g.body.lo[d] >= g.spacing))
         s.fail("body", "the body must be at least one grid spacing wide in every direction");
@@ -308,6 +322,9 @@ Deck parse_deck(const std::string& text, const std::string& name) {
                                       : std::string("the sub-grid ratio dx/dx' must be in (1, 20]");
       });
       if (pd->has("region")) dk.pdro.region = parse_region(pd->section("region"), dk.dim);
+      dk.pdro.interpolation = pd->choice("interpolation", {"pddo", "pim"}, "pddo") == "pim"
+                                  ? PdroInterpolation::Pim
+                                  : PdroInterpolation::Pddo;
       pd->finish();
       if (dk.formulation != "pmb")
         dmg->fail("overlay", "the refinement overlay is available for the pmb formulation only");
@@ -365,6 +382,10 @@ Deck parse_deck(const std::string& text, const std::string& name) {
         "dual_horizon";
     s.finish();
   }
+  if (dk.thermal_strain != 0.0 &&
+      (dk.solver != Deck::SolverType::Explicit || dk.formulation != "pmb" || dk.dual_horizon))
+    top.fail("material", "thermal_strain is supported by the explicit pmb solver with "
+                         "bond_pairing: source_horizon only");
   if (dk.damage && !dk.G0 && !dk.s0)
     top.fail("material", "damage is enabled: give material.fracture_energy (G0) or "
                          "material.critical_stretch, or set damage.enabled: false");
@@ -465,6 +486,7 @@ Deck parse_deck(const std::string& text, const std::string& name) {
       }
       out.tip_side = ct->choice("side", {"both", "upper", "lower"}, "both");
       out.tip_window = ct->number("speed_window", 2e-6, positive());
+      if (ct->has("advance")) out.tip_advance = ct->number("advance", std::nullopt, positive());
       if (ct->has("branch_gap")) out.branch_gap = ct->number("branch_gap", std::nullopt, positive());
       ct->finish();
     }

@@ -46,6 +46,7 @@ struct OutputSpec {
   std::string tip_side = "both";
   double tip_window = 2e-6;
   std::optional<double> branch_gap;
+  std::optional<double> tip_advance;  // initiation: the tip this far ahead (default: dx)
 };
 
 struct Deck {
@@ -59,6 +60,7 @@ struct Deck {
   std::string material_name = "material";
   double E = 0, rho = 0;
   std::optional<double> nu, G0, s0;
+  double thermal_strain = 0.0;  // alpha dT, subtracted from every bond stretch
   InfluenceShape shape = InfluenceShape::Constant;
   // discretization
   GridSpec grid;

@@ -15,7 +15,8 @@ inline double g(double t) {
 // E: also the strain-energy density W_i (thesis Eq. 2.14) of the bonds intact after this call.
 template <int D, InfluenceShape S, bool E>
 std::size_t forces_kernel(NodeSet& ns, BondFamilies& bf, bool allow_breaking,
-                          std::vector<std::uint64_t>* log, double* W, const PdroSpec* pdro) {
+                          std::vector<std::uint64_t>* log, double* W, const PdroSpec* pdro,
+                          double eth) {
   const std::size_t n = ns.size();
   const double* yp = ns.cur.data();
   const std::uint8_t* flags = ns.flags.data();
@@ -27,6 +28,8 @@ std::size_t forces_kernel(NodeSet& ns, BondFamilies& bf, bool allow_breaking,
   double* f1 = ns.f[1].data();
   double* f2 = ns.f[2].data();
   std::size_t broken_total = 0;
+  // Thermal strain eth = alpha dT: s = r/L - 1 - eth, so s/r = 1/L - (1 + eth)/r.
+  const double one_eth = 1.0 + eth;
 
 #pragma omp parallel for schedule(dynamic, 512) reduction(+ : broken_total)
   for (std::size_t i = 0; i < n; ++i) {
@@ -57,10 +60,10 @@ std::size_t forces_kernel(NodeSet& ns, BondFamilies& bf, bool allow_breaking,
       const double bp = 0.5 * (bb + std::abs(bb));
       double gw = bp * yp[j + 3];
       if constexpr (S != InfluenceShape::Constant) gw *= g<S>(1.0 / (ail * delta));
-      const double s = r * ail - 1.0;
+      const double s = r * ail - one_eth;
       smax = std::max(smax, bp > 0.0 ? s : -INFINITY);
-      // f = c g s beta V e,  s / r = 1/L - 1/r
-      const double fr = ci * gw * (ail - 1.0 / r);
+      // f = c g s beta V e
+      const double fr = ci * gw * (ail - one_eth / r);
       a0 += fr * d0;
       a1 += fr * d1;
       a2 += fr * d2;
@@ -81,9 +84,9 @@ std::size_t forces_kernel(NodeSet& ns, BondFamilies& bf, bool allow_breaking,
         const double r = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2);
         const double il = inv_len[k];
         const double ail = std::abs(il);
-        const double s = r * ail - 1.0;
+        const double s = r * ail - one_eth;
         const double bv = static_cast<double>(b) * yp[4 * j + 3];
-        if (il > 0.0 && s > s0 && (!pdro || pdro_bond_breaks(ns, bf, i, k, s0, *pdro))) {
+        if (il > 0.0 && s > s0 && (!pdro || pdro_bond_breaks(ns, bf, i, k, s0, *pdro, eth))) {
           beta[k] = -b;
           bw += bv;
           ++nb;
@@ -95,7 +98,7 @@ std::size_t forces_kernel(NodeSet& ns, BondFamilies& bf, bool allow_breaking,
         }
         double gw = bv;
         if constexpr (S != InfluenceShape::Constant) gw *= g<S>(1.0 / (ail * delta));
-        const double fr = ci * gw * (ail - 1.0 / r);
+        const double fr = ci * gw * (ail - one_eth / r);
         a0 += fr * d0;
         a1 += fr * d1;
         a2 += fr * d2;
@@ -113,7 +116,7 @@ std::size_t forces_kernel(NodeSet& ns, BondFamilies& bf, bool allow_breaking,
 }
 
 template <int D, InfluenceShape S>
-void energy_kernel(const NodeSet& ns, const BondFamilies& bf, std::vector<double>& W) {
+void energy_kernel(const NodeSet& ns, const BondFamilies& bf, double eth, std::vector<double>& W) {
   const std::size_t n = ns.size();
   W.assign(n, 0.0);
 #pragma omp parallel for schedule(dynamic, 512)
@@ -131,7 +134,7 @@ void energy_kernel(const NodeSet& ns, const BondFamilies& bf, std::vector<double
         r2 += t * t;
       }
       const double L = bf.length(k);
-      const double s = (std::sqrt(r2) - L) / L;
+      const double s = (std::sqrt(r2) - L) / L - eth;
       w += g<S>(L * inv_delta) * s * s * L * static_cast<double>(b) * ns.volume[j];
     }
     W[i] = 0.25 * ns.micromodulus[i] * w;
@@ -177,15 +180,16 @@ auto dispatch(int dim, InfluenceShape s, Args&&... args) {
 template <int D, InfluenceShape S>
 struct ForcesOp {
   static std::size_t run(NodeSet& ns, BondFamilies& bf, bool brk,
-                         std::vector<std::uint64_t>* log, double* W, const PdroSpec* pdro) {
-    return W ? forces_kernel<D, S, true>(ns, bf, brk, log, W, pdro)
-             : forces_kernel<D, S, false>(ns, bf, brk, log, nullptr, pdro);
+                         std::vector<std::uint64_t>* log, double* W, const PdroSpec* pdro,
+                         double eth) {
+    return W ? forces_kernel<D, S, true>(ns, bf, brk, log, W, pdro, eth)
+             : forces_kernel<D, S, false>(ns, bf, brk, log, nullptr, pdro, eth);
   }
 };
 template <int D, InfluenceShape S>
 struct EnergyOp {
-  static int run(const NodeSet& ns, const BondFamilies& bf, std::vector<double>& W) {
-    energy_kernel<D, S>(ns, bf, W);
+  static int run(const NodeSet& ns, const BondFamilies& bf, double eth, std::vector<double>& W) {
+    energy_kernel<D, S>(ns, bf, eth, W);
     return 0;
   }
 };
@@ -201,7 +205,7 @@ struct StiffnessOp {
 
 PmbStepStats pmb_forces(NodeSet& nodes, BondFamilies& bonds, InfluenceShape shape,
                         bool allow_breaking, std::vector<std::uint64_t>* broken_log,
-                        std::vector<double>* W, const PdroSpec* pdro) {
+                        std::vector<double>* W, const PdroSpec* pdro, double thermal_strain) {
   PmbStepStats st;
   double* w = nullptr;
   if (W) {
@@ -210,13 +214,13 @@ PmbStepStats pmb_forces(NodeSet& nodes, BondFamilies& bonds, InfluenceShape shap
   }
   st.newly_broken =
       dispatch<ForcesOp>(nodes.dim, shape, nodes, bonds, allow_breaking, broken_log, w,
-                         pdro && pdro->enabled ? pdro : nullptr);
+                         pdro && pdro->enabled ? pdro : nullptr, thermal_strain);
   return st;
 }
 
 void pmb_energy_density(const NodeSet& nodes, const BondFamilies& bonds, InfluenceShape shape,
-                        std::vector<double>& W) {
-  dispatch<EnergyOp>(nodes.dim, shape, nodes, bonds, W);
+                        std::vector<double>& W, double thermal_strain) {
+  dispatch<EnergyOp>(nodes.dim, shape, nodes, bonds, thermal_strain, W);
 }
 
 void pmb_stiffness_sum(const NodeSet& nodes, const BondFamilies& bonds, InfluenceShape shape,

@@ -23,13 +23,15 @@ struct PmbStepStats {
 // (in no particular order) so that a step can be undone. When `W` is given, it receives the
 // strain-energy density of every node from the same pass (inactive nodes: 0).
 // `pdro`: bonds about to break are re-checked by the refinement overlay (overlay/pdro.hpp).
+// `thermal_strain` = alpha dT enters every bond stretch as s - alpha dT (Stewart & Jeon Eq. 13).
 PmbStepStats pmb_forces(NodeSet& nodes, BondFamilies& bonds, InfluenceShape shape,
                         bool allow_breaking, std::vector<std::uint64_t>* broken_log = nullptr,
-                        std::vector<double>* W = nullptr, const PdroSpec* pdro = nullptr);
+                        std::vector<double>* W = nullptr, const PdroSpec* pdro = nullptr,
+                        double thermal_strain = 0.0);
 
 // Strain-energy density W_i = 1/4 sum_j c_i g s^2 xi beta_j V_j over intact bonds (thesis 2.14).
 void pmb_energy_density(const NodeSet& nodes, const BondFamilies& bonds, InfluenceShape shape,
-                        std::vector<double>& W);
+                        std::vector<double>& W, double thermal_strain = 0.0);
 
 // sum_j c_i g beta_j V_j / xi: the stiffness sum of the Silling-Askari stable-step bound.
 void pmb_stiffness_sum(const NodeSet& nodes, const BondFamilies& bonds, InfluenceShape shape,

@@ -74,6 +74,7 @@ Model build_model(const Deck& dk) {
   }
   m.damage_enabled = dk.damage;
   m.pdro = dk.pdro;
+  mat.thermal_strain = dk.thermal_strain;
 
   QuadratureSpec qs;
   qs.rule = dk.quadrature;
@@ -93,6 +94,7 @@ Model build_model(const Deck& dk) {
   m.body = dk.grid.body;
   for (int d = dk.dim; d < 3; ++d) m.body.lo[d] = -INFINITY, m.body.hi[d] = INFINITY;
   m.holes = dk.grid.holes;
+  m.body_clip = dk.grid.clip;
 
   const double tol = 1e-9 * dk.grid.spacing;
   for (std::size_t r = 0; r < dk.no_fail.size(); ++r)

@@ -42,6 +42,7 @@ struct MaterialLaw {
   double s0 = 0;
   double c0 = 0;
   double wave_speed = 0;         // P-wave speed for reports
+  double thermal_strain = 0;     // alpha dT (PMB): bond stretch s - alpha dT
   InfluenceShape shape = InfluenceShape::Constant;
   PlaneCondition plane = PlaneCondition::None;
   double thickness = 1.0;
@@ -70,6 +71,7 @@ struct Model {
   double lattice_rotation = 0.0;  // radians (2D grids): orientation of children offsets
   Box body;                       // the body box; refinement creates no node outside it
   std::vector<Shape> holes;       // ... nor inside a hole
+  std::optional<Shape> body_clip; // ... nor outside a non-box body (disk)
   bool surface_correction = false;
   bool dual_horizon = false;  // explicit PMB in the dual-horizon form (bonds.t_* maintained)
   PdroSpec pdro;              // refinement overlay for bond failure (PMB)

@@ -4,18 +4,20 @@
 #include <cmath>
 #include <vector>
 
+#include "core/visible_gradient.hpp"
 #include "overlay/pddo.hpp"
 
 namespace periadapt {
 
-bool pdro_bond_breaks(const NodeSet& ns, const BondFamilies& bf, std::size_t i, std::uint64_t k,
-                      double s0, const PdroSpec& spec) {
+namespace {
+
+using P3 = std::array<double, 3>;
+
+// Current positions of the virtual points `at` by the PDDO over the active nodes of both
+// families (damaged ones included); false when the moment matrix is singular.
+bool positions_by_pddo(const NodeSet& ns, const BondFamilies& bf, std::size_t i, std::size_t j,
+                       const std::array<P3, 4>& at, std::array<P3, 4>& y) {
   const int D = ns.dim;
-  const std::size_t j = bf.neighbor[k];
-  if (spec.region &&
-      !spec.region->contains({ns.x[0][i], ns.x[1][i], ns.x[2][i]}, 1e-9 * ns.spacing[i]))
-    return true;
-  // Material points of both families and the two ends (ids sorted, unique).
   std::vector<std::uint32_t> ids;
   ids.reserve(bf.end(i) - bf.begin(i) + bf.end(j) - bf.begin(j) + 2);
   ids.push_back(static_cast<std::uint32_t>(i));
@@ -24,51 +26,81 @@ bool pdro_bond_breaks(const NodeSet& ns, const BondFamilies& bf, std::size_t i, 
   for (std::uint64_t q = bf.begin(j); q < bf.end(j); ++q) ids.push_back(bf.neighbor[q]);
   std::sort(ids.begin(), ids.end());
   ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  std::erase_if(ids, [&](std::uint32_t p) { return !(ns.flags[p] & kActive); });
   std::vector<PddoPoint> pts;
   pts.reserve(ids.size());
-  for (std::uint32_t p : ids)
-    if (ns.flags[p] & kActive) pts.push_back({{ns.x[0][p], ns.x[1][p], ns.x[2][p]}, ns.volume[p]});
+  for (std::uint32_t p : ids) pts.push_back({{ns.x[0][p], ns.x[1][p], ns.x[2][p]}, ns.volume[p]});
+  std::vector<double> c;
+  for (std::size_t v = 0; v < 4; ++v) {
+    if (!pddo_weights(D, at[v], pts, ns.horizon[i], c)) return false;
+    y[v] = at[v];
+    for (std::size_t m = 0; m < ids.size(); ++m)
+      for (int d = 0; d < D; ++d) y[v][static_cast<std::size_t>(d)] += c[m] * ns.u[static_cast<std::size_t>(d)][ids[m]];
+  }
+  return true;
+}
 
+// Current positions by the visible linear fit (PIM) of the nearer end: I for i and i', J for j'
+// and j.
+void positions_by_pim(const NodeSet& ns, const BondFamilies& bf, std::size_t i, std::size_t j,
+                      const std::array<P3, 4>& at, std::array<P3, 4>& y) {
+  const int D = ns.dim;
+  double GI[3][3], GJ[3][3];
+  fit_gradient(ns, bf, static_cast<std::uint32_t>(i), ns.u, GI);
+  fit_gradient(ns, bf, static_cast<std::uint32_t>(j), ns.u, GJ);
+  for (std::size_t v = 0; v < 4; ++v) {
+    const std::size_t e = v < 2 ? i : j;
+    const auto& G = v < 2 ? GI : GJ;
+    y[v] = at[v];
+    for (int d = 0; d < D; ++d) {
+      double u = ns.u[static_cast<std::size_t>(d)][e];
+      for (int a = 0; a < D; ++a)
+        u += G[d][a] * (at[v][static_cast<std::size_t>(a)] - ns.x[static_cast<std::size_t>(a)][e]);
+      y[v][static_cast<std::size_t>(d)] += u;
+    }
+  }
+}
+
+}  // namespace
+
+bool pdro_bond_breaks(const NodeSet& ns, const BondFamilies& bf, std::size_t i, std::uint64_t k,
+                      double s0, const PdroSpec& spec, double thermal_strain) {
+  const int D = ns.dim;
+  const std::size_t j = bf.neighbor[k];
+  if (spec.region &&
+      !spec.region->contains({ns.x[0][i], ns.x[1][i], ns.x[2][i]}, 1e-9 * ns.spacing[i]))
+    return true;
+  spec.counters->checks.fetch_add(1, std::memory_order_relaxed);
   const double L = bf.length(k), dxp = L / spec.n;
-  std::array<double, 3> e{0, 0, 0}, I{ns.x[0][i], ns.x[1][i], ns.x[2][i]},
-      J{ns.x[0][j], ns.x[1][j], ns.x[2][j]};
-  for (int d = 0; d < D; ++d) e[static_cast<std::size_t>(d)] = (J[static_cast<std::size_t>(d)] - I[static_cast<std::size_t>(d)]) / L;
-  auto along = [&](const std::array<double, 3>& from, double t) {
-    std::array<double, 3> p = from;
-    for (int d = 0; d < D; ++d) p[static_cast<std::size_t>(d)] += t * e[static_cast<std::size_t>(d)];
+  const P3 I{ns.x[0][i], ns.x[1][i], ns.x[2][i]}, J{ns.x[0][j], ns.x[1][j], ns.x[2][j]};
+  auto along = [&](double t) {
+    P3 p = I;
+    for (int d = 0; d < D; ++d) p[static_cast<std::size_t>(d)] += t / L * (J[static_cast<std::size_t>(d)] - I[static_cast<std::size_t>(d)]);
     return p;
   };
-  const double half = 0.5 * L;
-  const std::array<double, 3> vi = along(I, dxp), vj = along(J, -dxp), vip = along(I, half - 0.5 * dxp),
-                              vjp = along(I, half + 0.5 * dxp);
-  // Current position of a virtual point: x + PDDO-interpolated displacement.
-  std::vector<double> c;
-  auto current = [&](const std::array<double, 3>& at, std::array<double, 3>& y) {
-    if (!pddo_weights(D, at, pts, ns.horizon[i], c)) return false;
-    y = at;
-    std::size_t m = 0;
-    for (std::uint32_t p : ids) {
-      if (!(ns.flags[p] & kActive)) continue;
-      for (int d = 0; d < D; ++d)
-        y[static_cast<std::size_t>(d)] += c[m] * (ns.cur[4 * p + static_cast<std::size_t>(d)] - ns.x[static_cast<std::size_t>(d)][p]);
-      ++m;
-    }
-    return true;
-  };
-  std::array<double, 3> yi, yj, yip, yjp, yI{0, 0, 0}, yJ{0, 0, 0};
-  if (!current(vi, yi) || !current(vj, yj) || !current(vip, yip) || !current(vjp, yjp))
+  // Virtual points in the order i, i', j', j.
+  const std::array<P3, 4> at{along(dxp), along(0.5 * (L - dxp)), along(0.5 * (L + dxp)), along(L - dxp)};
+  std::array<P3, 4> y;
+  if (spec.interpolation == PdroInterpolation::Pim) {
+    positions_by_pim(ns, bf, i, j, at, y);
+  } else if (!positions_by_pddo(ns, bf, i, j, at, y)) {
+    spec.counters->breaks.fetch_add(1, std::memory_order_relaxed);
     return true;  // no overlay possible: plain rule
+  }
+  P3 yI{0, 0, 0}, yJ{0, 0, 0};
   for (int d = 0; d < D; ++d) {
     yI[static_cast<std::size_t>(d)] = ns.cur[4 * i + static_cast<std::size_t>(d)];
     yJ[static_cast<std::size_t>(d)] = ns.cur[4 * j + static_cast<std::size_t>(d)];
   }
-  auto strain = [&](const std::array<double, 3>& a, const std::array<double, 3>& b) {
+  auto strain = [&](const P3& a, const P3& b) {
     double r2 = 0;
     for (int d = 0; d < D; ++d) r2 += std::pow(b[static_cast<std::size_t>(d)] - a[static_cast<std::size_t>(d)], 2);
-    return std::sqrt(r2) / dxp - 1.0;
+    return std::sqrt(r2) / dxp - 1.0 - thermal_strain;
   };
-  const double smax = std::max({strain(yI, yi), strain(yip, yjp), strain(yj, yJ)});
-  return smax > s0 * std::sqrt(spec.n);
+  const double smax = std::max({strain(yI, y[0]), strain(y[1], y[2]), strain(y[3], yJ)});
+  const bool breaks = smax > s0 * std::sqrt(spec.n);
+  if (breaks) spec.counters->breaks.fetch_add(1, std::memory_order_relaxed);
+  return breaks;
 }
 
 }  // namespace periadapt

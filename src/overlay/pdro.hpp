@@ -6,7 +6,11 @@
 // ones included). The bond breaks only if one of the sub-pairs I-i, i'-j', j-J is stretched
 // beyond s0' = s0 sqrt(n); otherwise it stays and is checked again later. dx is the bond's
 // reference length. No node is added: the strength of the coarse grid follows the target dx'.
+// Interpolation: the PDDO (the paper's choice) or, to compare, the PIM of AGRS: a linear fit over
+// the visible family of the nearer end node (intact bonds only, so it never bridges a crack).
+#include <atomic>
 #include <cstdint>
+#include <memory>
 #include <optional>
 
 #include "core/bond_families.hpp"
@@ -15,14 +19,25 @@
 
 namespace periadapt {
 
+enum class PdroInterpolation { Pddo, Pim };
+
+// How often the overlay ran: re-checks of bonds past s0, and how many of them broke.
+struct PdroCounters {
+  std::atomic<std::uint64_t> checks{0}, breaks{0};
+};
+
 struct PdroSpec {
   bool enabled = false;
   double n = 2.0;               // dx / dx'
   std::optional<Shape> region;  // bonds whose owner lies inside (default: everywhere)
+  PdroInterpolation interpolation = PdroInterpolation::Pddo;
+  std::shared_ptr<PdroCounters> counters = std::make_shared<PdroCounters>();
 };
 
 // True when bond k of node i breaks under the overlay (its plain stretch already exceeds s0).
+// `thermal_strain` (alpha dT) is subtracted from every sub-pair strain as from the bond's.
 bool pdro_bond_breaks(const NodeSet& nodes, const BondFamilies& bonds, std::size_t i,
-                      std::uint64_t k, double s0, const PdroSpec& spec);
+                      std::uint64_t k, double s0, const PdroSpec& spec,
+                      double thermal_strain = 0.0);
 
 }  // namespace periadapt

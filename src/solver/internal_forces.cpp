@@ -16,7 +16,8 @@ std::size_t internal_forces(Model& m, bool allow_breaking, std::vector<std::uint
                       m.lps_scratch, log, W);
   if (m.dual_horizon)
     return pmb_dual_forces(m.nodes, m.bonds, m.material.shape, allow_breaking, log, W);
-  return pmb_forces(m.nodes, m.bonds, m.material.shape, allow_breaking, log, W, &m.pdro)
+  return pmb_forces(m.nodes, m.bonds, m.material.shape, allow_breaking, log, W, &m.pdro,
+                    m.material.thermal_strain)
       .newly_broken;
 }
 
@@ -25,7 +26,7 @@ void energy_density(const Model& m, std::vector<double>& W) {
     lps_energy_density(m.nodes, m.bonds, m.material.shape, m.material.lps_constants,
                        m.lps_scratch, W);
   else
-    pmb_energy_density(m.nodes, m.bonds, m.material.shape, W);
+    pmb_energy_density(m.nodes, m.bonds, m.material.shape, W, m.material.thermal_strain);
 }
 
 }  // namespace periadapt
