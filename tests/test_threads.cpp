@@ -1,4 +1,5 @@
-// Same deck, 1 and 2 threads: the same damage field and displacements (1e-12 relative).
+// Same deck, 1 and 2 threads: the same damage field and displacements (1e-12 relative), also with
+// the refinement overlay, whose re-checks run inside the parallel breaking pass.
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -9,17 +10,22 @@
 
 using namespace periadapt;
 
-TEST(Threads, ResultsDoNotDependOnThreadCount) {
-  // The crack-branching plate at 1 mm, 10 us: the crack starts, so breaking is exercised.
-  const std::string yaml =
-      "model: {dimension: 2, plane: stress}\n"
-      "material: {youngs_modulus: 72.0e9, density: 2440, fracture_energy: 135}\n"
-      "discretization: {spacing: 0.001, horizon_factor: 3, body: {box: {min: [0, 0], max: [0.1, 0.04]}}}\n"
-      "cracks: [{segment: [[0, 0.02], [0.05, 0.02]]}]\n"
-      "loads:\n"
-      "  - {type: traction, region: {box: {min: [0, 0.039], max: [0.1, 0.04]}}, value: [0, 22.0e6]}\n"
-      "  - {type: traction, region: {box: {min: [0, 0], max: [0.1, 0.001]}}, value: [0, -22.0e6]}\n"
-      "solver: {time_step: 5.0e-8, end_time: 1.0e-5}\n";
+namespace {
+
+// The crack-branching plate at 1 mm, 10 us: the crack starts, so breaking is exercised.
+std::string branching_plate(const std::string& damage) {
+  return "model: {dimension: 2, plane: stress}\n"
+         "material: {youngs_modulus: 72.0e9, density: 2440, fracture_energy: 135}\n"
+         "discretization: {spacing: 0.001, horizon_factor: 3, body: {box: {min: [0, 0], max: [0.1, 0.04]}}}\n"
+         "cracks: [{segment: [[0, 0.02], [0.05, 0.02]]}]\n"
+         "loads:\n"
+         "  - {type: traction, region: {box: {min: [0, 0.039], max: [0.1, 0.04]}}, value: [0, 22.0e6]}\n"
+         "  - {type: traction, region: {box: {min: [0, 0], max: [0.1, 0.001]}}, value: [0, -22.0e6]}\n"
+         "solver: {time_step: 5.0e-8, end_time: 1.0e-5}\n" +
+         damage;
+}
+
+void expect_same_with_1_and_2_threads(const std::string& yaml) {
   const Deck dk = test::deck_from(yaml);
   RunOptions ro;
   ro.write_files = false;
@@ -39,5 +45,19 @@ TEST(Threads, ResultsDoNotDependOnThreadCount) {
     EXPECT_NEAR(a.model.nodes.damage(i), b.model.nodes.damage(i), 1e-12);
     for (int d = 0; d < 2; ++d)
       EXPECT_NEAR(a.model.nodes.u[d][i], b.model.nodes.u[d][i], 1e-12 * umax);
+  }
+}
+
+}  // namespace
+
+TEST(Threads, ResultsDoNotDependOnThreadCount) {
+  expect_same_with_1_and_2_threads(branching_plate(""));
+}
+
+TEST(Threads, OverlayResultsDoNotDependOnThreadCount) {
+  for (const char* interp : {"pddo", "pim"}) {
+    SCOPED_TRACE(interp);
+    expect_same_with_1_and_2_threads(
+        branching_plate(std::string("damage: {overlay: {n: 2, interpolation: ") + interp + "}}\n"));
   }
 }

@@ -17,6 +17,8 @@
 #include "studies/bobaru_1d_wave.hpp"
 #include "studies/wave_patch_2d.hpp"
 #include "studies/pdro_bar.hpp"
+#include "studies/pdro_sent.hpp"
+#include "studies/pdro_disk.hpp"
 #include "studies/static_plate_2d.hpp"
 #include "studies/static_plate_refined.hpp"
 #include "io/deck.hpp"
@@ -117,12 +119,17 @@ int main(int argc, char** argv) {
       ->required()
       ->check(CLI::IsMember(
           {"bobaru-1d-static", "bobaru-1d-wave", "static-plate-2d", "static-plate-refined",
-           "wave-patch-2d", "pdro-bar"}));
+           "wave-patch-2d", "pdro-bar", "pdro-sent", "pdro-disk"}));
   study->add_option("--out", out, "directory for the study's CSV files");
   PdroBarOptions bar;
   bool bar_quick = false;
-  study->add_flag("--pim", bar.pim, "pdro-bar: overlay interpolation by PIM instead of PDDO");
-  study->add_flag("--quick", bar_quick, "pdro-bar: targets 0.9, 0.5, 0.2 mm only");
+  PdroSentOptions sent;
+  study->add_flag("--pim", bar.pim, "pdro-*: overlay interpolation by PIM instead of PDDO");
+  PdroDiskOptions disk;
+  std::string study_deck;
+  study->add_option("--deck", study_deck, "pdro-sent, pdro-disk: the deck to vary (default: "
+                                          "examples/pdro_sent_2d.yaml, examples/pdro_disk_2d.yaml)");
+  study->add_flag("--quick", bar_quick, "pdro-bar: targets 0.9, 0.5, 0.2 mm only; pdro-sent: 1 mm native and n = 2 only; pdro-disk: n = 2 only");
   study->add_option("--threads", threads, "OpenMP threads (default: all cores)")
       ->check(CLI::PositiveNumber);
   try {
@@ -142,6 +149,18 @@ int main(int argc, char** argv) {
       if (study_name == "pdro-bar") {
         if (bar_quick) bar.targets = {0.9e-3, 0.5e-3, 0.2e-3};
         return run_pdro_bar_study(out, bar);
+      }
+      if (study_name == "pdro-sent") {
+        sent.pim = bar.pim;
+        if (!study_deck.empty()) sent.deck = study_deck;
+        if (bar_quick) sent.native_spacings = {1.0e-3}, sent.overlay_n = {2.0};
+        return run_pdro_sent_study(out, sent);
+      }
+      if (study_name == "pdro-disk") {
+        disk.pim = bar.pim;
+        if (!study_deck.empty()) disk.deck = study_deck;
+        if (bar_quick) disk.overlay_n = {2.0};
+        return run_pdro_disk_study(out, disk);
       }
       return run_bobaru_1d_study(out);
     }

@@ -120,7 +120,7 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
     vtu = std::make_unique<VtuSeries>(dir, "snapshot");
     hist.open(dir + "/history.csv");
     hist << "step,time_s,kinetic_energy_J,strain_energy_J,external_work_J,energy_balance_J,"
-            "broken_bonds,damaged_nodes,tip_x_m,tip_y_m,tip_z_m,tip_speed_m_s,nodes,bonds,"
+            "broken_bonds,damaged_nodes,damage_sum,tip_x_m,tip_y_m,tip_z_m,tip_speed_m_s,nodes,bonds,"
             "wall_time_s\n";
   }
   std::vector<double> W;
@@ -130,6 +130,7 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
   vv.initialize();
   double solver_seconds = 0;
   std::size_t damaged_nodes = 0;
+  double damage_sum = 0;  // total damage over active nodes (Stewart & Jeon Fig. 9a)
   Vec3 last_tip{NAN, NAN, NAN};
   double K = 0, U = 0;
 
@@ -143,16 +144,21 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
     if (do_hist) {
       K = kinetic_energy(ns);
       damaged_nodes = 0;
-      for (std::size_t i = 0; i < ns.size(); ++i)
-        if (ns.damage(i) > tip.threshold) ++damaged_nodes;
+      damage_sum = 0;
+      for (std::size_t i = 0; i < ns.size(); ++i) {
+        if (!(ns.flags[i] & kActive)) continue;
+        const double phi = ns.damage(i);
+        damage_sum += phi;
+        if (phi > tip.threshold) ++damaged_nodes;
+      }
       if (track) {
         if (auto s = tracker.observe(ns, t)) last_tip = s->position;
       }
       if (hist)
         hist << fmt::format(
-            "{},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{},{},{:.6e},{:.6e},{:.6e},{:.6e},{},{},{:.4f}\n",
+            "{},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{},{},{:.4f}\n",
             step, t, K, U, vv.external_work(), K + U - vv.external_work(), vv.broken_bonds(),
-            damaged_nodes, last_tip[0], last_tip[1], last_tip[2], tracker.current_speed(),
+            damaged_nodes, damage_sum, last_tip[0], last_tip[1], last_tip[2], tracker.current_speed(),
             active_count(ns), m.bonds.num_bonds(),
             std::chrono::duration<double>(clock::now() - t_start).count());
     }
@@ -249,6 +255,12 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
   j["bonds"] = m.bonds.num_bonds();
   j["precrack_bonds"] = m.precrack_bonds;
   j["broken_bonds"] = vv.broken_bonds();
+  {
+    double phi = 0;
+    for (std::size_t i = 0; i < ns.size(); ++i)
+      if (ns.flags[i] & kActive) phi += ns.damage(i);
+    j["damage_sum"] = phi;
+  }
   j["steps"] = vv.step_count();
   j["dt"] = ts.dt;
   j["dt_stable"] = ts.dt_crit;

@@ -34,7 +34,11 @@ struct Shape {
   Vec3 center{0, 0, 0};
   double radius = 0;
   int axis = 2;  // cylinder axis (0,1,2)
+  bool outside = false;  // the complement: everything not in the shape (e.g. a clamped rim)
   bool contains(const Vec3& p, double tol = 0.0) const {
+    return outside ? !contains_shape(p, -tol) : contains_shape(p, tol);
+  }
+  bool contains_shape(const Vec3& p, double tol) const {
     switch (kind) {
       case Kind::All: return true;
       case Kind::Box: return box.contains(p, tol);

@@ -6,11 +6,12 @@
 namespace periadapt {
 
 void fit_gradient(const NodeSet& ns, const BondFamilies& bf, std::uint32_t p,
-                  const std::array<std::vector<double>, 3>& F, double G[3][3]) {
+                  const std::array<std::vector<double>, 3>& F, double G[3][3], const float* beta) {
+  if (!beta) beta = bf.beta.data();
   const int D = ns.dim;
   double M[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}, R[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
   for (std::uint64_t k = bf.begin(p); k < bf.end(p); ++k) {
-    if (!BondFamilies::intact(bf.beta[k])) continue;
+    if (!BondFamilies::intact(beta[k])) continue;
     const std::uint32_t j = bf.neighbor[k];
     if (!(ns.flags[j] & kActive)) continue;
     double dx[3];

@@ -53,6 +53,7 @@ Shape parse_region(Section s, int dim) {
     }
     c.finish();
   }
+  sh.outside = s.boolean("outside", false);
   s.finish();
   return sh;
 }
@@ -210,6 +211,7 @@ Deck parse_deck(const std::string& text, const std::string& name) {
     }
     Section body = s.section("body");
     Shape b = parse_region(body, dk.dim);
+    if (b.outside) s.fail("body", "the body cannot be an outside (complement) region");
     if (b.kind == Shape::Kind::Disk) {
       // A disk body: its bounding box, clipped to the disk.
       g.clip = b;

@@ -207,6 +207,8 @@ PmbStepStats pmb_forces(NodeSet& nodes, BondFamilies& bonds, InfluenceShape shap
                         bool allow_breaking, std::vector<std::uint64_t>* broken_log,
                         std::vector<double>* W, const PdroSpec* pdro, double thermal_strain) {
   PmbStepStats st;
+  if (pdro && pdro->enabled && allow_breaking && pdro->interpolation == PdroInterpolation::Pim)
+    pdro->visible_beta->assign(bonds.beta.begin(), bonds.beta.end());
   double* w = nullptr;
   if (W) {
     W->assign(nodes.size(), 0.0);

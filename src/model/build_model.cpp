@@ -74,6 +74,9 @@ Model build_model(const Deck& dk) {
   }
   m.damage_enabled = dk.damage;
   m.pdro = dk.pdro;
+  // Own counters and scratch: models built from one deck must not share them.
+  m.pdro.counters = std::make_shared<PdroCounters>();
+  m.pdro.visible_beta = std::make_shared<std::vector<float>>();
   mat.thermal_strain = dk.thermal_strain;
 
   QuadratureSpec qs;

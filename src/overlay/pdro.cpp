@@ -43,11 +43,11 @@ bool positions_by_pddo(const NodeSet& ns, const BondFamilies& bf, std::size_t i,
 // Current positions by the visible linear fit (PIM) of the nearer end: I for i and i', J for j'
 // and j.
 void positions_by_pim(const NodeSet& ns, const BondFamilies& bf, std::size_t i, std::size_t j,
-                      const std::array<P3, 4>& at, std::array<P3, 4>& y) {
+                      const std::array<P3, 4>& at, std::array<P3, 4>& y, const float* beta) {
   const int D = ns.dim;
   double GI[3][3], GJ[3][3];
-  fit_gradient(ns, bf, static_cast<std::uint32_t>(i), ns.u, GI);
-  fit_gradient(ns, bf, static_cast<std::uint32_t>(j), ns.u, GJ);
+  fit_gradient(ns, bf, static_cast<std::uint32_t>(i), ns.u, GI, beta);
+  fit_gradient(ns, bf, static_cast<std::uint32_t>(j), ns.u, GJ, beta);
   for (std::size_t v = 0; v < 4; ++v) {
     const std::size_t e = v < 2 ? i : j;
     const auto& G = v < 2 ? GI : GJ;
@@ -82,7 +82,8 @@ bool pdro_bond_breaks(const NodeSet& ns, const BondFamilies& bf, std::size_t i, 
   const std::array<P3, 4> at{along(dxp), along(0.5 * (L - dxp)), along(0.5 * (L + dxp)), along(L - dxp)};
   std::array<P3, 4> y;
   if (spec.interpolation == PdroInterpolation::Pim) {
-    positions_by_pim(ns, bf, i, j, at, y);
+    const std::vector<float>& vb = *spec.visible_beta;
+    positions_by_pim(ns, bf, i, j, at, y, vb.size() == bf.beta.size() ? vb.data() : nullptr);
   } else if (!positions_by_pddo(ns, bf, i, j, at, y)) {
     spec.counters->breaks.fetch_add(1, std::memory_order_relaxed);
     return true;  // no overlay possible: plain rule

@@ -32,6 +32,9 @@ struct PdroSpec {
   std::optional<Shape> region;  // bonds whose owner lies inside (default: everywhere)
   PdroInterpolation interpolation = PdroInterpolation::Pddo;
   std::shared_ptr<PdroCounters> counters = std::make_shared<PdroCounters>();
+  // PIM: bond factors at the start of the force pass. Visibility is read from this copy, not from
+  // the factors other threads are breaking, so results do not depend on the thread count.
+  std::shared_ptr<std::vector<float>> visible_beta = std::make_shared<std::vector<float>>();
 };
 
 // True when bond k of node i breaks under the overlay (its plain stretch already exceeds s0).
