@@ -77,6 +77,62 @@ TEST(Adapt, RefinementConservesLinearMomentum) {
                  std::to_string((st.kinetic_after - st.kinetic_before) / st.kinetic_before));
 }
 
+TEST(Adapt, MethodAKeepsVolumeAndMomentumAndCutsInterfaceCellsByEq34) {
+  // A 6 x 6 block of 1 mm parents refined by method A: the 13 x 13 half-spacing lattice over it
+  // (169 - 36 = 133 new nodes, the parents kept), total volume unchanged, and the coarse
+  // neighbours reduced by the overlap of the new cells: V_c - V_f for a side neighbour (j = 3 in
+  // Eq. 3.4), V_c - V_f / 4 for a corner-diagonal one (j = 1), with V_f = V_c / 4.
+  Model m = build_model(test::deck_from(kPlate));
+  NodeSet& ns = m.nodes;
+  for (std::size_t i = 0; i < ns.size(); ++i) {  // a smooth, non-uniform velocity field
+    ns.v[0][i] = 3.0 + std::sin(150.0 * ns.x[0][i]) * std::cos(90.0 * ns.x[1][i]);
+    ns.v[1][i] = -2.0 + 40.0 * ns.x[0][i] * ns.x[1][i];
+  }
+  auto total_volume = [&] {
+    double v = 0;
+    for (std::size_t i = 0; i < ns.size(); ++i)
+      if (ns.flags[i] & kActive) v += ns.volume[i];
+    return v;
+  };
+  auto node_at = [&](double x, double y) {
+    for (std::size_t i = 0; i < ns.size(); ++i)
+      if (std::hypot(ns.x[0][i] - x, ns.x[1][i] - y) < 1e-9) return i;
+    return ns.size();
+  };
+  const double v0 = total_volume(), vc = 1e-6;
+  AdaptSpec spec;
+  spec.enabled = true;
+  spec.method = NodeGeneration::A;
+  std::vector<std::uint32_t> parents;
+  for (std::uint32_t i = 0; i < ns.size(); ++i)
+    if (ns.x[0][i] > 0.010 && ns.x[0][i] < 0.016 && ns.x[1][i] > 0.004 && ns.x[1][i] < 0.010)
+      parents.push_back(i);
+  ASSERT_EQ(parents.size(), 36u);
+  const std::size_t n0 = ns.size();
+  const RefineStats st = refine_nodes(m, parents, spec);
+  EXPECT_EQ(st.children, 133u);
+  EXPECT_EQ(ns.size(), n0 + 133);
+  EXPECT_NEAR(total_volume(), v0, 1e-12 * v0);
+  for (std::uint32_t p : parents) {
+    EXPECT_TRUE(ns.flags[p] & kActive);
+    EXPECT_EQ(ns.level[p], 1);
+    EXPECT_NEAR(ns.volume[p], vc / 4, 1e-18);
+  }
+  const std::size_t side = node_at(0.0095, 0.0075), corner = node_at(0.0095, 0.0035),
+                    far = node_at(0.0075, 0.0075);
+  ASSERT_LT(side, n0);
+  ASSERT_LT(corner, n0);
+  EXPECT_NEAR(ns.volume[side], vc - vc / 4, 1e-18);
+  EXPECT_NEAR(ns.volume[corner], vc - vc / 16, 1e-18);
+  EXPECT_NEAR(ns.volume[far], vc, 1e-18);
+  EXPECT_NEAR(ns.volume[node_at(0.010, 0.0075)], vc / 4, 1e-18);  // a new mid-point
+  for (int d = 0; d < 2; ++d)
+    EXPECT_NEAR(st.momentum_after[d], st.momentum_before[d], 1e-12 * std::abs(st.momentum_before[d]));
+  RecordProperty("kinetic_energy_change_rel",
+                 std::to_string((st.kinetic_after - st.kinetic_before) / st.kinetic_before));
+  EXPECT_LT(std::abs(st.kinetic_after - st.kinetic_before), 1e-3 * st.kinetic_before);
+}
+
 TEST(Adapt, FullyRefinedGridEqualsTheGridBuiltDirectly) {
   // Refining every node once with delta-scaling must give exactly the level-1 grid: same nodes,
   // volumes, horizons, micromoduli, critical stretches, bonds (pre-crack included), and the same

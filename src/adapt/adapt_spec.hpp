@@ -20,8 +20,16 @@ struct InitialRefinement {
   int level = 1;
 };
 
+// Node generation (thesis 3.2.3, Fig. 3.5).
+enum class NodeGeneration {
+  B,  // children at the centres of the 2^dim sub-cells, parent removed
+  A,  // 3^dim lattice at half spacing around the parent (mid-points), parent kept; coarse
+      // interface cells lose the area the new cells cover (Eq. 3.4)
+};
+
 struct AdaptSpec {
   bool enabled = false;
+  NodeGeneration method = NodeGeneration::B;
   std::vector<InitialRefinement> initial;  // refined at t = 0
   bool visibility = true;                  // initial zones widened by the visibility criterion
   int max_level = 1;

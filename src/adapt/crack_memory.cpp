@@ -21,7 +21,8 @@ std::uint64_t pair_key(std::uint32_t owner, std::uint32_t other) {
 
 }  // namespace
 
-CrackMemory remember_cracks(const Model& m, const std::vector<char>& vanishing) {
+CrackMemory remember_cracks(const Model& m, const std::vector<char>& vanishing,
+                            const std::vector<char>* refined) {
   const NodeSet& ns = m.nodes;
   const BondFamilies& bf = m.bonds;
   const int D = ns.dim;
@@ -33,9 +34,9 @@ CrackMemory remember_cracks(const Model& m, const std::vector<char>& vanishing) 
     for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {
       if (BondFamilies::intact(bf.beta[k])) continue;
       const std::uint32_t j = bf.neighbor[k];
-      if (!vanishing[i] && !vanishing[j]) {
-        broken_pairs.push_back(pair_key(static_cast<std::uint32_t>(i), j));
-      } else if (D == 2) {
+      const bool keep = !vanishing[i] && !vanishing[j];
+      if (keep) broken_pairs.push_back(pair_key(static_cast<std::uint32_t>(i), j));
+      if ((!keep || (refined && ((*refined)[i] || (*refined)[j]))) && D == 2) {
         const Vec3 xi{ns.x[0][i], ns.x[1][i], 0}, xj{ns.x[0][j], ns.x[1][j], 0};
         // Pre-crack bonds are cut again geometrically after the rebuild.
         bool precrack = false;

@@ -19,8 +19,11 @@ struct CrackMemory {
   std::vector<Facet> facets;
 };
 
-// `vanishing[i]`: node i is deactivated by the change (ids of the current node set).
-CrackMemory remember_cracks(const Model& m, const std::vector<char>& vanishing);
+// `vanishing[i]`: node i is deactivated by the change (ids of the current node set); its broken
+// bonds become facets. `refined` (optional): nodes that stay but get new nodes around them
+// (method A); their broken bonds are kept and also become facets for the new nodes' bonds.
+CrackMemory remember_cracks(const Model& m, const std::vector<char>& vanishing,
+                            const std::vector<char>* refined = nullptr);
 
 // New families for the changed node set (surface correction and pre-cracks reapplied); bonds
 // between nodes that existed before (id < n_before) keep their broken state, new bonds crossing a

@@ -1,6 +1,7 @@
 #include "adapt/refine.hpp"
 
 #include "adapt/crack_memory.hpp"
+#include "adapt/refine_common.hpp"
 #include "analysis/energy.hpp"
 
 #include <algorithm>
@@ -45,6 +46,8 @@ void scale_material_to_horizon(Model& m, std::size_t i) {
 
 RefineStats refine_nodes(Model& m, std::vector<std::uint32_t> parents, const AdaptSpec& spec,
                          bool inherit_boundary) {
+  if (spec.method == NodeGeneration::A)
+    return refine_nodes_method_a(m, std::move(parents), spec, inherit_boundary);
   const auto t0 = std::chrono::steady_clock::now();
   RefineStats st;
   NodeSet& ns = m.nodes;
@@ -62,11 +65,6 @@ RefineStats refine_nodes(Model& m, std::vector<std::uint32_t> parents, const Ada
   const CrackMemory memory = remember_cracks(m, is_parent);
 
   // Children: offsets +-h/4 along the (possibly rotated) lattice axes.
-  struct ChildRange {
-    std::uint32_t parent;
-    std::size_t first, count;
-  };
-  std::vector<ChildRange> first_child_of;
   const double cr = std::cos(m.lattice_rotation), sr = std::sin(m.lattice_rotation);
   const int nchild = 1 << D;
   for (std::uint32_t p : parents) {
@@ -122,83 +120,17 @@ RefineStats refine_nodes(Model& m, std::vector<std::uint32_t> parents, const Ada
       scale_material_to_horizon(m, q);
       ns.sync_current(q);
     }
-    first_child_of.push_back({p, ns.size() - offs.size(), offs.size()});
     ns.flags[p] = static_cast<std::uint8_t>(ns.flags[p] & ~kActive);
     for (int d = 0; d < 3; ++d) ns.v[d][p] = ns.a[d][p] = ns.f[d][p] = ns.b[d][p] = 0.0;
     ++st.parents;
     st.children += offs.size();
   }
 
-  if (inherit_boundary) {
-    // Each parent's children are consecutive ids.
-    std::vector<std::size_t> first_child(n0, 0), child_count(n0, 0);
-    for (const ChildRange& cr_ : first_child_of) {
-      first_child[cr_.parent] = cr_.first;
-      child_count[cr_.parent] = cr_.count;
-    }
-    auto expand = [&](std::vector<std::uint32_t>& list) {
-      std::vector<std::uint32_t> out;
-      for (std::uint32_t i : list) {
-        if (i < n0 && is_parent[i] && child_count[i] > 0) {
-          for (std::size_t c = 0; c < child_count[i]; ++c)
-            out.push_back(static_cast<std::uint32_t>(first_child[i] + c));
-        } else {
-          out.push_back(i);
-        }
-      }
-      std::sort(out.begin(), out.end());
-      list = std::move(out);
-    };
-    for (BodyLoad& l : m.loads) expand(l.nodes);
-    // Prescribed motions follow their region: a child inside it is constrained, one outside not.
-    for (PrescribedMotion& pm : m.motions) {
-      expand(pm.nodes);
-      const double tol = 1e-9 * m.grid_spacing;
-      std::vector<std::uint32_t> kept;
-      for (std::uint32_t i : pm.nodes)
-        if (i < n0 || pm.region.contains({ns.x[0][i], ns.x[1][i], ns.x[2][i]}, tol))
-          kept.push_back(i);
-      pm.nodes = std::move(kept);
-    }
-    for (std::size_t i = n0; i < ns.size(); ++i) ns.flags[i] &= static_cast<std::uint8_t>(~kBoundary);
-    for (const PrescribedMotion& pm : m.motions)
-      for (std::uint32_t i : pm.nodes) ns.flags[i] |= kBoundary;
-  }
-
-  std::vector<double> horizon_before(ns.horizon.begin(), ns.horizon.begin() + static_cast<long>(n0));
-  // Interface-horizon correction: refined nodes next to a coarser node take m times the
-  // distance to it, so their families lose no volume across the interface (thesis Fig. 3.10b).
-  if (spec.interface_horizon) {
-    double hmax = 0;
-    for (std::size_t i = 0; i < ns.size(); ++i)
-      if (ns.flags[i] & kActive) hmax = std::max(hmax, ns.spacing[i]);
-    CellGrid grid(D, {ns.x[0].data(), ns.x[1].data(), ns.x[2].data()}, ns.size(), 2 * hmax);
-    for (std::size_t i = 0; i < ns.size(); ++i) {
-      if (!(ns.flags[i] & kActive) || ns.level[i] == 0) continue;
-      const double base = level_horizon(m, spec, ns.level[i]);
-      const double mi = base / ns.spacing[i];
-      double dmin = INFINITY;
-      grid.for_each_within({ns.x[0][i], ns.x[1][i], ns.x[2][i]}, 2.0 * ns.spacing[i],
-                           [&](std::uint32_t j, double d2) {
-                             if ((ns.flags[j] & kActive) && ns.spacing[j] > 1.5 * ns.spacing[i])
-                               dmin = std::min(dmin, std::sqrt(d2));
-                           });
-      const double want = std::isfinite(dmin) ? std::max(base, mi * dmin) : base;
-      if (want != ns.horizon[i]) {
-        ns.horizon[i] = want;
-        scale_material_to_horizon(m, i);
-      }
-    }
-  }
+  if (inherit_boundary) inherit_loads_and_motions(m, n0, is_parent, false);
 
   std::vector<char> changed(ns.size(), 0);
-  for (std::size_t i = 0; i < ns.size(); ++i)
-    changed[i] = i >= n0 || (i < n0 && is_parent[i]) || (i < horizon_before.size() &&
-                                                          horizon_before[i] != ns.horizon[i]);
-  rebuild_families(m, memory, n0, changed);
-  st.momentum_after = linear_momentum(ns);
-  st.kinetic_after = kinetic_energy(ns);
-  st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  for (std::size_t i = 0; i < n0; ++i) changed[i] = is_parent[i];
+  finish_refinement(m, spec, memory, n0, changed, t0, st);
   return st;
 }
 

@@ -412,10 +412,7 @@ Deck parse_deck(const std::string& text, const std::string& name) {
     if (initial_top > ad.max_level)
       a->fail("max_level", "is below the level of an initial_refinement zone (" +
                                std::to_string(initial_top) + ")");
-    const std::string method = a->choice("method", {"B", "A"}, "B");
-    if (method == "A")
-      a->fail("method", "node generation method A is not available yet; use B (children at "
-                        "sub-cell centres, parent deactivated)");
+    ad.method = a->choice("method", {"B", "A"}, "B") == "A" ? NodeGeneration::A : NodeGeneration::B;
     const std::string sc = a->choice("scaling", {"delta", "m", "delta_m"}, "delta");
     ad.scaling = sc == "delta" ? HorizonScaling::Delta
                  : sc == "m"   ? HorizonScaling::M
@@ -443,6 +440,9 @@ Deck parse_deck(const std::string& text, const std::string& name) {
     ad.damage_trigger = a->boolean("damage_trigger", false);
     ad.total_energy = a->choice("energy", {"strain", "total"}, "strain") == "total";
     ad.coarsen = a->boolean("coarsen", false);
+    if (ad.coarsen && ad.method == NodeGeneration::A)
+      a->fail("coarsen", "coarsening restores parents from their children (method b); method a "
+                         "keeps the parents and is not coarsened");
     if (ad.coarsen && !ad.energy_fraction)
       a->fail("coarsen", "coarsening needs the energy trigger (it coarsens where the energy "
                          "is below the trigger level)");

@@ -1,0 +1,86 @@
+#include "adapt/refine_common.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "analysis/energy.hpp"
+#include "core/cell_grid.hpp"
+
+namespace periadapt {
+
+void inherit_loads_and_motions(Model& m, std::size_t n0, const std::vector<char>& is_parent,
+                               bool parents_survive) {
+  NodeSet& ns = m.nodes;
+  std::vector<std::vector<std::uint32_t>> children(n0);
+  for (std::size_t q = n0; q < ns.size(); ++q)
+    if (ns.parent[q] >= 0) children[static_cast<std::size_t>(ns.parent[q])].push_back(static_cast<std::uint32_t>(q));
+  auto expand = [&](std::vector<std::uint32_t>& list) {
+    std::vector<std::uint32_t> out;
+    for (std::uint32_t i : list) {
+      const bool refined = i < n0 && is_parent[i] && !children[i].empty();
+      if (!refined || parents_survive) out.push_back(i);
+      if (refined) out.insert(out.end(), children[i].begin(), children[i].end());
+    }
+    std::sort(out.begin(), out.end());
+    list = std::move(out);
+  };
+  for (BodyLoad& l : m.loads) expand(l.nodes);
+  // Prescribed motions follow their region: a child inside it is constrained, one outside not.
+  for (PrescribedMotion& pm : m.motions) {
+    expand(pm.nodes);
+    const double tol = 1e-9 * m.grid_spacing;
+    std::vector<std::uint32_t> kept;
+    for (std::uint32_t i : pm.nodes)
+      if (i < n0 || pm.region.contains({ns.x[0][i], ns.x[1][i], ns.x[2][i]}, tol))
+        kept.push_back(i);
+    pm.nodes = std::move(kept);
+  }
+  for (std::size_t i = n0; i < ns.size(); ++i) ns.flags[i] &= static_cast<std::uint8_t>(~kBoundary);
+  for (const PrescribedMotion& pm : m.motions)
+    for (std::uint32_t i : pm.nodes) ns.flags[i] |= kBoundary;
+}
+
+void finish_refinement(Model& m, const AdaptSpec& spec, const CrackMemory& memory, std::size_t n0,
+                       std::vector<char> changed, std::chrono::steady_clock::time_point t0,
+                       RefineStats& st) {
+  NodeSet& ns = m.nodes;
+  const int D = ns.dim;
+  std::vector<double> horizon_before(ns.horizon.begin(), ns.horizon.begin() + static_cast<long>(n0));
+  // Interface-horizon correction: refined nodes next to a coarser node take m times the
+  // distance to it, so their families lose no volume across the interface (thesis Fig. 3.10b).
+  if (spec.interface_horizon) {
+    double hmax = 0;
+    for (std::size_t i = 0; i < ns.size(); ++i)
+      if (ns.flags[i] & kActive) hmax = std::max(hmax, ns.spacing[i]);
+    CellGrid grid(D, {ns.x[0].data(), ns.x[1].data(), ns.x[2].data()}, ns.size(), 2 * hmax);
+    for (std::size_t i = 0; i < ns.size(); ++i) {
+      if (!(ns.flags[i] & kActive) || ns.level[i] == 0) continue;
+      const double base = level_horizon(m, spec, ns.level[i]);
+      const double mi = base / ns.spacing[i];
+      double dmin = INFINITY;
+      grid.for_each_within({ns.x[0][i], ns.x[1][i], ns.x[2][i]}, 2.0 * ns.spacing[i],
+                           [&](std::uint32_t j, double d2) {
+                             if ((ns.flags[j] & kActive) && ns.spacing[j] > 1.5 * ns.spacing[i])
+                               dmin = std::min(dmin, std::sqrt(d2));
+                           });
+      const double want = std::isfinite(dmin) ? std::max(base, mi * dmin) : base;
+      if (want != ns.horizon[i]) {
+        ns.horizon[i] = want;
+        scale_material_to_horizon(m, i);
+      }
+    }
+  }
+
+  changed.resize(ns.size(), 0);
+  for (std::size_t i = 0; i < ns.size(); ++i)
+    changed[i] = changed[i] || i >= n0 ||
+                 (i < horizon_before.size() && horizon_before[i] != ns.horizon[i]);
+  rebuild_families(m, memory, n0, changed);
+  st.momentum_after = linear_momentum(ns);
+  st.kinetic_after = kinetic_energy(ns);
+  st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  st.kinetic_after = kinetic_energy(ns);
+  st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace periadapt

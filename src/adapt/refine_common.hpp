@@ -1,0 +1,32 @@
+#pragma once
+// Steps shared by the two node-generation methods of AGRS (refine.cpp: method B, children at
+// sub-cell centres, parent removed; refine_method_a.cpp: method A, mid-points, parent kept).
+#include <chrono>
+#include <cstdint>
+#include <vector>
+
+#include "adapt/adapt_spec.hpp"
+#include "adapt/crack_memory.hpp"
+#include "adapt/refine.hpp"
+#include "model/model.hpp"
+
+namespace periadapt {
+
+// Initial refinement: nodes created from a loaded or constrained parent (ns.parent, ids >= n0)
+// join its loads and, when inside the motion's region, its prescribed motions. A refined parent
+// stays in the lists only when it survives (method A).
+void inherit_loads_and_motions(Model& m, std::size_t n0, const std::vector<char>& is_parent,
+                               bool parents_survive);
+
+// Method A (refine_method_a.cpp); refine_nodes dispatches to it.
+RefineStats refine_nodes_method_a(Model& m, std::vector<std::uint32_t> parents,
+                                  const AdaptSpec& spec, bool inherit_boundary);
+
+// The common tail of an event: interface-horizon correction, local family rebuild around the
+// changed nodes (`changed`: refined parents and nodes whose volume changed; new nodes and nodes
+// whose horizon changes here are added), momentum and kinetic energy after, wall time since t0.
+void finish_refinement(Model& m, const AdaptSpec& spec, const CrackMemory& memory, std::size_t n0,
+                       std::vector<char> changed, std::chrono::steady_clock::time_point t0,
+                       RefineStats& st);
+
+}  // namespace periadapt
