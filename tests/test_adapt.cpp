@@ -377,3 +377,39 @@ TEST(Adapt, LocalFamilyRebuildEqualsTheGlobalOne) {
   ASSERT_EQ(result[0].size(), result[1].size());
   for (std::size_t k = 0; k < result[0].size(); ++k) ASSERT_EQ(result[0][k], result[1][k]) << k;
 }
+
+TEST(Adapt, RefinedZoneStaysAroundATravellingPulse) {
+  // Bobaru 6.2.2: total-energy trigger at 75%, six horizons of visibility. Hot nodes that are
+  // already refined still ask for the coarse nodes around them (thesis Fig. 3.4), so the refined
+  // zone moves with the pulse and covers it on both sides; a zone that only grows from coarse hot
+  // nodes trails behind the peak.
+  const Deck dk = test::deck_from(
+      "model: {dimension: 1}\n"
+      "material: {youngs_modulus: 1.0, density: 1.0, micromodulus: triangular}\n"
+      "discretization: {spacing: 1.0, horizon: 3.0, registration: node_on_edge, quadrature: "
+      "subcell, body: {box: {min: [0], max: [450]}}}\n"
+      "initial_conditions: {displacement: ['0.02*exp(-0.01*x^2)']}\n"
+      "damage: {enabled: false}\n"
+      "solver: {end_time: 200, time_step: 0.25, bond_pairing: dual_horizon}\n"
+      "adapt: {max_level: 1, energy_trigger: 0.75, energy: total, coarsen: true, "
+      "visibility_factor: 6}\n");
+  Model m = build_model(dk);
+  VelocityVerlet vv(m, 0.25);
+  vv.initialize();
+  Adaptor ad(m, vv, dk.adapt);
+  for (int s = 0; s < 800; ++s) ASSERT_TRUE(ad.step());
+  const NodeSet& ns = m.nodes;
+  std::size_t peak = 0;
+  double lo = INFINITY, hi = -INFINITY;
+  for (std::size_t i = 0; i < ns.size(); ++i) {
+    if (!(ns.flags[i] & kActive)) continue;
+    if (ns.u[0][i] > ns.u[0][peak]) peak = i;
+    if (ns.level[i] > 0) lo = std::min(lo, ns.x[0][i]), hi = std::max(hi, ns.x[0][i]);
+  }
+  const double xp = ns.x[0][peak];
+  EXPECT_NEAR(xp, 200.0, 20.0);  // the pulse has travelled at c = 1 (less a little dispersion)
+  // The pulse's energy sits within about 10 of its peak; the zone reaches 6 coarse horizons
+  // (18) beyond the hot nodes on both sides.
+  EXPECT_LT(lo, xp - 15.0);
+  EXPECT_GT(hi, xp + 15.0);
+}

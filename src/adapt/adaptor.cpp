@@ -2,6 +2,8 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
+
 #include "adapt/coarsen.hpp"
 #include "core/cell_grid.hpp"
 #include "adapt/triggers.hpp"
@@ -30,16 +32,19 @@ std::size_t Adaptor::nodes_removed() const {
   return n;
 }
 
-void Adaptor::refine(const std::vector<std::uint32_t>& ids, const char* trigger) {
-  const std::vector<char> refinable = refinable_nodes(m_, spec_);
-  const std::vector<std::uint32_t> parents =
-      apply_visibility(m_, ids, refinable, spec_.visibility_factor);
+std::vector<std::uint32_t> Adaptor::parents_for(const std::vector<std::uint32_t>& ids) const {
+  if (ids.empty()) return {};
+  return apply_visibility(m_, ids, refinable_nodes(m_, spec_), spec_.visibility_factor);
+}
+
+void Adaptor::refine(const std::vector<std::uint32_t>& parents, std::size_t identified,
+                     const char* trigger) {
   if (parents.empty()) return;
   RefinementEvent ev;
   ev.step = vv_.step_count();
   ev.time = vv_.time();
   ev.trigger = trigger;
-  ev.identified = ids.size();
+  ev.identified = identified;
   ev.stats = refine_nodes(m_, parents, spec_);
   std::size_t active = 0;
   for (auto f : m_.nodes.flags) active += (f & kActive) != 0;
@@ -62,29 +67,36 @@ void Adaptor::coarsen_quiet(const std::vector<double>& E, double alpha,
   double emax = 0;
   for (std::size_t i = 0; i < ns.size(); ++i)
     if ((ns.flags[i] & kActive) && !(ns.flags[i] & kBoundary)) emax = std::max(emax, E[i]);
-  // Parents of children that are all quiet and farther than the visibility radius from every
-  // hot node (any level), so that a refined zone is not coarsened under a passing wave.
+  // Parents whose children are all quiet and that, back on the grid, would not see a hot node:
+  // no hot node within visibility_factor max(delta_parent, delta_hot) of the parent (the
+  // refinement rule run backwards), so a refined zone is not coarsened under a passing wave.
   (void)flagged;
-  std::vector<std::uint32_t> hot;
+  std::vector<char> hot(ns.size(), 0);
+  double dhot = 0;
   for (std::size_t i = 0; i < ns.size(); ++i)
-    if ((ns.flags[i] & kActive) && E[i] >= alpha * emax) hot.push_back(static_cast<std::uint32_t>(i));
-  std::vector<char> near(ns.size(), 0);
-  if (!hot.empty()) {
-    double reach = 0;
-    for (std::uint32_t i : hot) reach = std::max(reach, spec_.visibility_factor * ns.horizon[i]);
-    CellGrid grid(ns.dim, {ns.x[0].data(), ns.x[1].data(), ns.x[2].data()}, ns.size(), reach);
-    for (std::uint32_t i : hot)
-      grid.for_each_within({ns.x[0][i], ns.x[1][i], ns.x[2][i]},
-                           spec_.visibility_factor * ns.horizon[i] * (1 + 1e-12),
-                           [&](std::uint32_t j, double) { near[j] = 1; });
-  }
+    if ((ns.flags[i] & kActive) && E[i] >= alpha * emax) hot[i] = 1, dhot = std::max(dhot, ns.horizon[i]);
   std::vector<char> busy(ns.size(), 0);
   for (std::size_t c = 0; c < ns.size(); ++c)
-    if (ns.parent[c] >= 0 && (ns.flags[c] & kActive) && (E[c] >= alpha * emax || near[c]))
+    if (ns.parent[c] >= 0 && (ns.flags[c] & kActive) && hot[c])
       busy[static_cast<std::size_t>(ns.parent[c])] = 1;
   std::vector<std::uint32_t> quiet;
-  for (std::uint32_t p : coarsenable_parents(m_))
-    if (!busy[p]) quiet.push_back(p);
+  const std::vector<std::uint32_t> candidates = coarsenable_parents(m_);
+  if (candidates.empty()) return;
+  double dpar = 0;
+  for (std::uint32_t p : candidates) dpar = std::max(dpar, ns.horizon[p]);
+  const double f = spec_.visibility_factor;
+  CellGrid grid(ns.dim, {ns.x[0].data(), ns.x[1].data(), ns.x[2].data()}, ns.size(),
+                f * std::max({dhot, dpar, 1e-300}));
+  for (std::uint32_t p : candidates) {
+    if (busy[p]) continue;
+    bool near = false;
+    grid.for_each_within({ns.x[0][p], ns.x[1][p], ns.x[2][p]}, f * std::max(dhot, ns.horizon[p]) * (1 + 1e-12),
+                         [&](std::uint32_t j, double d2) {
+                           const double r = f * std::max(ns.horizon[j], ns.horizon[p]) * (1 + 1e-12);
+                           near = near || (hot[j] && d2 <= r * r);
+                         });
+    if (!near) quiet.push_back(p);
+  }
   if (quiet.empty()) return;
   RefinementEvent ev;
   ev.step = vv_.step_count();
@@ -113,14 +125,12 @@ bool Adaptor::step() {
       for (std::size_t i = 0; i < ns.size(); ++i) damage_before_[i] = ns.damage(i);
       if (!vv_.step()) return false;
       const auto ids = damage_trigger(m_, damage_before_, refinable_nodes(m_, spec_));
-      if (ids.empty() || pass > spec_.max_level) break;
+      // Nothing refinable around the grown damage (e.g. all on the finest level already): keep
+      // the step as computed.
+      const auto parents = pass > spec_.max_level ? std::vector<std::uint32_t>{} : parents_for(ids);
+      if (parents.empty()) break;
       vv_.undo_last_step();
-      const std::size_t before = ns.size();
-      refine(ids, "damage");
-      if (ns.size() == before) {  // nothing refinable after all: keep the step as computed
-        if (!vv_.step()) return false;
-        break;
-      }
+      refine(parents, ids.size(), "damage");
     }
   } else if (!vv_.step()) {
     return false;
@@ -137,7 +147,7 @@ bool Adaptor::step() {
     const double alpha = *spec_.energy_fraction;
     const auto ids = energy_trigger(m_, E, alpha, refinable_nodes(m_, spec_));
     if (spec_.coarsen) coarsen_quiet(E, alpha, ids);
-    if (!ids.empty()) refine(ids, "energy");
+    refine(parents_for(ids), ids.size(), "energy");
   }
   return true;
 }

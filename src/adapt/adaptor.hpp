@@ -40,7 +40,9 @@ class Adaptor {
   std::size_t nodes_removed() const;  // children returned to their parents by coarsening
 
  private:
-  void refine(const std::vector<std::uint32_t>& ids, const char* trigger);
+  // Parents the identified nodes ask for (visibility applied); empty: nothing to refine.
+  std::vector<std::uint32_t> parents_for(const std::vector<std::uint32_t>& ids) const;
+  void refine(const std::vector<std::uint32_t>& parents, std::size_t identified, const char* trigger);
   void coarsen_quiet(const std::vector<double>& E, double alpha,
                      const std::vector<std::uint32_t>& flagged);
   Model& m_;

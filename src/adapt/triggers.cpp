@@ -35,7 +35,8 @@ std::vector<std::uint32_t> energy_trigger(const Model& m, const std::vector<doub
   std::vector<std::uint32_t> out;
   if (!(wmax > 0)) return out;
   for (std::size_t i = 0; i < ns.size(); ++i)
-    if (refinable[i] && W[i] >= alpha * wmax) out.push_back(static_cast<std::uint32_t>(i));
+    if ((refinable[i] || ((ns.flags[i] & kActive) && ns.level[i] > 0)) && W[i] >= alpha * wmax)
+      out.push_back(static_cast<std::uint32_t>(i));
   return out;
 }
 
@@ -44,7 +45,8 @@ std::vector<std::uint32_t> damage_trigger(const Model& m, const std::vector<doub
   const NodeSet& ns = m.nodes;
   std::vector<std::uint32_t> out;
   for (std::size_t i = 0; i < before.size() && i < ns.size(); ++i)
-    if (refinable[i] && ns.damage(i) > before[i]) out.push_back(static_cast<std::uint32_t>(i));
+    if ((refinable[i] || ((ns.flags[i] & kActive) && ns.level[i] > 0)) && ns.damage(i) > before[i])
+      out.push_back(static_cast<std::uint32_t>(i));
   return out;
 }
 
@@ -53,19 +55,21 @@ std::vector<std::uint32_t> apply_visibility(const Model& m, const std::vector<st
                                             double radius_factor) {
   const NodeSet& ns = m.nodes;
   std::vector<char> mark(ns.size(), 0);
-  double hmax = 0;
-  for (std::uint32_t i : ids) {
-    mark[i] = 1;
-    hmax = std::max(hmax, radius_factor * ns.horizon[i]);
-  }
   if (ids.empty()) return {};
-  CellGrid grid(ns.dim, {ns.x[0].data(), ns.x[1].data(), ns.x[2].data()}, ns.size(), hmax);
-  for (std::uint32_t i : ids)
-    grid.for_each_within({ns.x[0][i], ns.x[1][i], ns.x[2][i]},
-                         radius_factor * ns.horizon[i] * (1 + 1e-12),
-                         [&](std::uint32_t j, double) {
-                           if (refinable[j] && ns.level[j] <= ns.level[i]) mark[j] = 1;
-                         });
+  double dmax = 0;  // the largest horizon a candidate can have
+  for (std::size_t j = 0; j < ns.size(); ++j)
+    if (refinable[j]) dmax = std::max(dmax, ns.horizon[j]);
+  if (!(dmax > 0)) return {};
+  for (std::uint32_t i : ids) mark[i] = refinable[i];
+  CellGrid grid(ns.dim, {ns.x[0].data(), ns.x[1].data(), ns.x[2].data()}, ns.size(),
+                radius_factor * dmax);
+  for (std::uint32_t i : ids) {
+    const double reach = radius_factor * std::max(ns.horizon[i], dmax) * (1 + 1e-12);
+    grid.for_each_within({ns.x[0][i], ns.x[1][i], ns.x[2][i]}, reach, [&](std::uint32_t j, double d2) {
+      const double r = radius_factor * std::max(ns.horizon[i], ns.horizon[j]) * (1 + 1e-12);
+      if (refinable[j] && ns.level[j] <= ns.level[i] && d2 <= r * r) mark[j] = 1;
+    });
+  }
   std::vector<std::uint32_t> out;
   for (std::size_t i = 0; i < ns.size(); ++i)
     if (mark[i]) out.push_back(static_cast<std::uint32_t>(i));

@@ -14,17 +14,21 @@ namespace periadapt {
 // Refinable flags for every node (see above).
 std::vector<char> refinable_nodes(const Model& m, const AdaptSpec& spec);
 
-// Energy trigger: refinable nodes with W_i >= alpha max_j W_j (max over the active nodes without
-// prescribed motion, whose boundary-layer energies would switch the trigger off).
+// Energy trigger: nodes with W_i >= alpha max_j W_j (max over the active nodes without
+// prescribed motion, whose boundary-layer energies would switch the trigger off) that are
+// refinable or already refined: a hot refined node asks for the coarse nodes around it
+// (thesis Fig. 3.4: a request of a child is mapped to the coarse nodes close to it), which is
+// how the refined zone keeps ahead of a travelling wave or a running crack.
 std::vector<std::uint32_t> energy_trigger(const Model& m, const std::vector<double>& W,
                                           double alpha, const std::vector<char>& refinable);
 
-// Damage trigger: refinable nodes whose damage grew since `damage_before` was taken.
+// Damage trigger: nodes, refinable or already refined, whose damage grew since `damage_before`.
 std::vector<std::uint32_t> damage_trigger(const Model& m, const std::vector<double>& damage_before,
                                           const std::vector<char>& refinable);
 
-// Visibility: every refinable node within the horizon of an identified node, at the same or a
-// coarser level, is refined too, so that no coarse node sees the refined zone's core.
+// Visibility: the refinable identified nodes and every refinable node j at the same or a coarser
+// level within radius_factor max(delta_i, delta_j) of an identified node i (no coarse node sees
+// it, whose horizon is the larger one), e.g. Bobaru's six horizons with radius_factor 6.
 std::vector<std::uint32_t> apply_visibility(const Model& m, const std::vector<std::uint32_t>& ids,
                                             const std::vector<char>& refinable,
                                             double radius_factor = 1.0);
