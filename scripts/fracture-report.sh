@@ -11,7 +11,7 @@ out="${1:-out/report}"
 [[ -x build/periadapt ]] || { bash scripts/install-deps.sh; bash scripts/build.sh; }
 mkdir -p "$out"
 # Level-0 uniform deck: the adaptive deck without its adapt section.
-sed '/^adapt:/,/^  damage_trigger: true/d' examples/crack_branching_2d_adaptive.yaml > "$out/crack_branching_2d_level0.yaml"
+sed '/^adapt:/,/^  check_every:/d' examples/crack_branching_2d_adaptive.yaml > "$out/crack_branching_2d_level0.yaml"
 run() {  # name deck
   echo "running $1 ..."
   ./build/periadapt run "$2" --out "$out/$1" --quiet > "$out/$1.log" 2>&1 || { cat "$out/$1.log"; exit 1; }

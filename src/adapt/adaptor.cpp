@@ -124,13 +124,27 @@ bool Adaptor::step() {
       damage_before_.resize(ns.size());
       for (std::size_t i = 0; i < ns.size(); ++i) damage_before_[i] = ns.damage(i);
       if (!vv_.step()) return false;
-      const auto ids = damage_trigger(m_, damage_before_, refinable_nodes(m_, spec_));
-      // Nothing refinable around the grown damage (e.g. all on the finest level already): keep
-      // the step as computed.
-      const auto parents = pass > spec_.max_level ? std::vector<std::uint32_t>{} : parents_for(ids);
-      if (parents.empty()) break;
-      vv_.undo_last_step();
-      refine(parents, ids.size(), "damage");
+      const std::vector<char> refinable = refinable_nodes(m_, spec_);
+      const auto ids = damage_trigger(m_, damage_before_, refinable);
+      // Damage grew on a node that can still be refined: bonds broke on a coarse level, so the
+      // step is undone and redone on the refined grid (thesis Fig. 3.4).
+      bool coarse = false;
+      for (std::uint32_t i : ids) coarse = coarse || refinable[i];
+      if (coarse && pass <= spec_.max_level) {
+        const auto parents = parents_for(ids);
+        if (!parents.empty()) {
+          vv_.undo_last_step();
+          refine(parents, ids.size(), "damage");
+          continue;
+        }
+      }
+      // Damage grew on the finest level only: the step stands; the coarse nodes that would see
+      // it are refined ahead of the crack for the next steps.
+      // Batched every check_every steps: if the crack reaches a coarse node first, the branch
+      // above refines it with the step redone.
+      if (!ids.empty() && vv_.step_count() % spec_.check_every == 0)
+        refine(parents_for(ids), ids.size(), "damage");
+      break;
     }
   } else if (!vv_.step()) {
     return false;
