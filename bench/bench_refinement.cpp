@@ -69,6 +69,29 @@ int main(int argc, char** argv) {
              st.parents, st.children, 100 * added / static_cast<double>(before), event,
              event / step, step, before);
 
+  // 1b. Small events (the 8 parents of a 2 x 2 x 2 corner block, 56 net nodes): the first one
+  // also touches the spare family storage for the first time; later ones show what an event costs
+  // once running. Compare across N: the steady cost should follow the region, not the model.
+  {
+    Model ms = build_model(parse_deck(block_deck(n, h), "block"));
+    auto corner = [&](double x0) {
+      std::vector<std::uint32_t> few;
+      for (std::uint32_t i = 0; i < ms.nodes.size(); ++i)
+        if ((ms.nodes.flags[i] & kActive) && ms.nodes.level[i] == 0 && ms.nodes.x[0][i] > x0 &&
+            ms.nodes.x[0][i] < x0 + 2 * h && ms.nodes.x[1][i] < 2 * h && ms.nodes.x[2][i] < 2 * h)
+          few.push_back(i);
+      const auto t1 = clk::now();
+      refine_nodes(ms, few, spec);
+      return std::chrono::duration<double>(clk::now() - t1).count();
+    };
+    const double first = corner(0.0);
+    double steady = 0;
+    for (int e = 1; e <= 4; ++e) steady += corner(4.0 * e * h) / 4;
+    fmt::print("small event (8 parents): first {:.1f} ms = {:.2f} steps, then {:.1f} ms = {:.3f} "
+               "explicit steps of this model\n",
+               1e3 * first, first / step, 1e3 * steady, steady / step);
+  }
+
   // 2. Fully refined vs directly built.
   Model coarse = build_model(parse_deck(block_deck(n / 2, 2 * h), "coarse block"));
   std::vector<std::uint32_t> all;

@@ -375,7 +375,12 @@ TEST(Adapt, LocalFamilyRebuildEqualsTheGlobalOne) {
   }
   unsetenv("PERIADAPT_GLOBAL_REBUILD");
   ASSERT_EQ(result[0].size(), result[1].size());
-  for (std::size_t k = 0; k < result[0].size(); ++k) ASSERT_EQ(result[0][k], result[1][k]) << k;
+  // Displacements bit for bit; damage to round-off (rows the local rebuild copies keep their
+  // running broken-bond sums, the global rebuild sums them afresh).
+  for (std::size_t k = 0; k < result[0].size(); k += 2) {
+    ASSERT_EQ(result[0][k], result[1][k]) << k;
+    ASSERT_NEAR(result[0][k + 1], result[1][k + 1], 1e-12) << k;
+  }
 }
 
 TEST(Adapt, RefinedZoneStaysAroundATravellingPulse) {

@@ -50,7 +50,7 @@ void Adaptor::refine(const std::vector<std::uint32_t>& parents, std::size_t iden
   for (auto f : m_.nodes.flags) active += (f & kActive) != 0;
   ev.active_nodes = active;
   ev.bonds = m_.bonds.num_bonds();
-  const StableStep s = stable_time_step(m_);
+  const StableStep s = stable_time_step(m_, ev.stats.rebuilt);
   ev.dt_stable = s.dt;
   events_.push_back(ev);
   if (vv_.dt() > s.dt * (1 + 1e-9))
@@ -108,7 +108,7 @@ void Adaptor::coarsen_quiet(const std::vector<double>& E, double alpha,
   for (auto f : ns.flags) active += (f & kActive) != 0;
   ev.active_nodes = active;
   ev.bonds = m_.bonds.num_bonds();
-  ev.dt_stable = stable_time_step(m_).dt;
+  ev.dt_stable = stable_time_step(m_, ev.stats.rebuilt).dt;
   events_.push_back(ev);
   vv_.refresh();
 }

@@ -21,7 +21,7 @@ struct RefinementEvent {
   RefineStats stats;             // parents refined, children created, momentum, kinetic energy
   std::size_t active_nodes = 0;  // after the event
   std::size_t bonds = 0;
-  double dt_stable = 0;          // stable step of the refined model
+  double dt_stable = 0;          // smallest stable step among the rows the event rebuilt
 };
 
 // Raised when refinement makes the run's time step unstable.

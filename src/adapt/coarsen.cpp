@@ -94,7 +94,7 @@ RefineStats coarsen_nodes(Model& m, const std::vector<std::uint32_t>& parents) {
   // Every id already exists: "old" pairs keep their state, the revived parents' bonds are new.
   std::vector<char> changed(vanishing);
   for (std::uint32_t p : parents) changed[p] = 1;
-  rebuild_families(m, memory, ns.size(), changed);
+  st.rebuilt = rebuild_families(m, memory, ns.size(), changed);
   st.momentum_after = linear_momentum(ns);
   st.kinetic_after = kinetic_energy(ns);
   st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -25,41 +25,42 @@ CrackMemory remember_cracks(const Model& m, const std::vector<char>& vanishing,
                             const std::vector<char>* refined) {
   const NodeSet& ns = m.nodes;
   const BondFamilies& bf = m.bonds;
-  const int D = ns.dim;
   CrackMemory mem;
-  std::vector<std::uint64_t>& broken_pairs = mem.broken_pairs;
-  std::vector<Facet>& facets = mem.facets;
+  if (ns.dim != 2) return mem;  // 3D: pre-cracks are re-cut, facets are not kept (see notes)
+  // Only the rows of the nodes that vanish or get new nodes around them: a facet stands for a
+  // broken bond with such an end, in either direction (rows are sorted by neighbour id, so the
+  // reverse bond is found by bisection).
+  auto broken = [&](std::size_t a, std::uint32_t b) {
+    const auto first = bf.neighbor.begin() + static_cast<long>(bf.begin(a));
+    const auto last = bf.neighbor.begin() + static_cast<long>(bf.end(a));
+    const auto it = std::lower_bound(first, last, b);
+    return it != last && *it == b &&
+           !BondFamilies::intact(bf.beta[static_cast<std::size_t>(it - bf.neighbor.begin())]);
+  };
   for (std::size_t i = 0; i < ns.size(); ++i) {
-    if (!(ns.flags[i] & kActive)) continue;
+    if (!(ns.flags[i] & kActive) || !(vanishing[i] || (refined && (*refined)[i]))) continue;
     for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {
-      if (BondFamilies::intact(bf.beta[k])) continue;
       const std::uint32_t j = bf.neighbor[k];
-      const bool keep = !vanishing[i] && !vanishing[j];
-      if (keep) broken_pairs.push_back(pair_key(static_cast<std::uint32_t>(i), j));
-      if ((!keep || (refined && ((*refined)[i] || (*refined)[j]))) && D == 2) {
-        const Vec3 xi{ns.x[0][i], ns.x[1][i], 0}, xj{ns.x[0][j], ns.x[1][j], 0};
-        // Pre-crack bonds are cut again geometrically after the rebuild.
-        bool precrack = false;
-        for (const PreCrack& c : m.cracks)
-          precrack = precrack || bond_crosses_segment(xi, xj, c.points[0], c.points[1]);
-        if (precrack) continue;
-        const Vec3 mid = scale(add(xi, xj), 0.5), e = sub(xj, xi);
-        const double L = norm(e);
-        // Short facets: the bond says the crack crosses it, not where nor how it is oriented.
-        const double half = 0.25 * std::min(ns.spacing[i], ns.spacing[j]);
-        const Vec3 t{-e[1] / L * half, e[0] / L * half, 0};
-        facets.push_back({sub(mid, t), add(mid, t)});
-      }
+      if (BondFamilies::intact(bf.beta[k]) && !broken(j, static_cast<std::uint32_t>(i))) continue;
+      const Vec3 xi{ns.x[0][i], ns.x[1][i], 0}, xj{ns.x[0][j], ns.x[1][j], 0};
+      // Pre-crack bonds are cut again geometrically after the rebuild.
+      bool precrack = false;
+      for (const PreCrack& c : m.cracks)
+        precrack = precrack || bond_crosses_segment(xi, xj, c.points[0], c.points[1]);
+      if (precrack) continue;
+      const Vec3 mid = scale(add(xi, xj), 0.5), e = sub(xj, xi);
+      const double L = norm(e);
+      // Short facets: the bond says the crack crosses it, not where nor how it is oriented.
+      const double half = 0.25 * std::min(ns.spacing[i], ns.spacing[j]);
+      const Vec3 t{-e[1] / L * half, e[0] / L * half, 0};
+      mem.facets.push_back({sub(mid, t), add(mid, t)});
     }
   }
-  std::sort(broken_pairs.begin(), broken_pairs.end());
-  broken_pairs.erase(std::unique(broken_pairs.begin(), broken_pairs.end()), broken_pairs.end());
-
   return mem;
 }
 
-void rebuild_families(Model& m, const CrackMemory& mem, std::size_t n_before,
-                      const std::vector<char>& changed) {
+std::vector<std::uint32_t> rebuild_families(Model& m, const CrackMemory& mem,
+                                            std::size_t n_before, const std::vector<char>& changed) {
   NodeSet& ns = m.nodes;
   BondFamilies& bf = m.bonds;
   const int D = ns.dim;
@@ -88,7 +89,19 @@ void rebuild_families(Model& m, const CrackMemory& mem, std::size_t n_before,
                            });
     }
   }
-  bf = global ? build_families(ns, m.quadrature) : build_families(ns, m.quadrature, &bf, &rebuild);
+  // Broken bonds between surviving nodes, read from the current families for the rows about to
+  // be searched again (copied rows keep their states as they are).
+  std::vector<std::uint64_t> broken_pairs;
+  for (std::size_t i = 0; i < std::min(n_before, bf.num_nodes()); ++i) {
+    if (!rebuild[i] && !global) continue;
+    for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k)
+      if (!BondFamilies::intact(bf.beta[k]))
+        broken_pairs.push_back(pair_key(static_cast<std::uint32_t>(i), bf.neighbor[k]));
+  }
+  std::sort(broken_pairs.begin(), broken_pairs.end());
+  build_families_into(m.spare_bonds, ns, m.quadrature, global ? nullptr : &bf,
+                      global ? nullptr : &rebuild);
+  std::swap(m.bonds, m.spare_bonds);
   if (global) std::fill(rebuild.begin(), rebuild.end(), 1);
   if (m.surface_correction)
     apply_surface_correction(ns, bf, m.material.shape,
@@ -116,7 +129,7 @@ void rebuild_families(Model& m, const CrackMemory& mem, std::size_t n_before,
       if (!BondFamilies::intact(bf.beta[k])) continue;
       bool broken = false;
       if (i < n_before && j < n_before) {
-        broken = std::binary_search(mem.broken_pairs.begin(), mem.broken_pairs.end(),
+        broken = std::binary_search(broken_pairs.begin(), broken_pairs.end(),
                                     pair_key(static_cast<std::uint32_t>(i), j));
       } else if (fgrid) {
         const Vec3 xi{ns.x[0][i], ns.x[1][i], 0}, xj{ns.x[0][j], ns.x[1][j], 0};
@@ -129,9 +142,15 @@ void rebuild_families(Model& m, const CrackMemory& mem, std::size_t n_before,
       if (broken) bf.beta[k] = -bf.beta[k];
     }
   }
-  mark_unbreakable_bonds(ns, bf);
+  // Copied rows keep their marks and weights: their neighbours neither changed volume nor flags
+  // (a changed node puts every row that reaches it into the window).
+  mark_unbreakable_bonds(ns, bf, &rebuild);
   if (m.dual_horizon) build_transpose(bf);
-  update_damage_weights(ns, bf);
+  update_damage_weights(ns, bf, &rebuild);
+  std::vector<std::uint32_t> rows;
+  for (std::size_t i = 0; i < ns.size(); ++i)
+    if (rebuild[i]) rows.push_back(static_cast<std::uint32_t>(i));
+  return rows;
 }
 
 }  // namespace periadapt

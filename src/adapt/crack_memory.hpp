@@ -1,7 +1,8 @@
 #pragma once
 // What a change of the node set (refinement, coarsening) must carry over to the new bond
-// families: which bonds between surviving nodes were broken, and short crack facets standing for
-// the broken bonds of the nodes that vanish, so that new bonds crossing them start broken.
+// families: short crack facets standing for the broken bonds of the nodes that vanish, so that
+// new bonds crossing them start broken. (Broken bonds between surviving nodes are read from the
+// old families by rebuild_families itself.)
 #include <cstdint>
 #include <vector>
 
@@ -15,13 +16,13 @@ struct Facet {
 };
 
 struct CrackMemory {
-  std::vector<std::uint64_t> broken_pairs;  // sorted (owner id << 32 | neighbor id)
   std::vector<Facet> facets;
 };
 
 // `vanishing[i]`: node i is deactivated by the change (ids of the current node set); its broken
 // bonds become facets. `refined` (optional): nodes that stay but get new nodes around them
-// (method A); their broken bonds are kept and also become facets for the new nodes' bonds.
+// (method A); their broken bonds also become facets for the new nodes' bonds. Cost: the rows of
+// those nodes only.
 CrackMemory remember_cracks(const Model& m, const std::vector<char>& vanishing,
                             const std::vector<char>* refined = nullptr);
 
@@ -31,7 +32,8 @@ CrackMemory remember_cracks(const Model& m, const std::vector<char>& vanishing,
 // nodes that appeared, vanished or changed horizon: only the families within reach of them are
 // searched again (a local window), the others are copied (not with surface correction, whose
 // factors are not local: then everything is rebuilt).
-void rebuild_families(Model& m, const CrackMemory& memory, std::size_t n_before,
-                      const std::vector<char>& changed);
+// Returns the nodes whose rows were searched again.
+std::vector<std::uint32_t> rebuild_families(Model& m, const CrackMemory& memory,
+                                            std::size_t n_before, const std::vector<char>& changed);
 
 }  // namespace periadapt

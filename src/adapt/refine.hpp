@@ -26,6 +26,7 @@ struct RefineStats {
   std::array<double, 3> momentum_after{0, 0, 0};
   double kinetic_before = 0, kinetic_after = 0;
   double seconds = 0;
+  std::vector<std::uint32_t> rebuilt;  // nodes whose families were searched again
 };
 
 // Base horizon of a node of `level` (before any interface correction).

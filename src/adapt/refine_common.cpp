@@ -75,7 +75,7 @@ void finish_refinement(Model& m, const AdaptSpec& spec, const CrackMemory& memor
   for (std::size_t i = 0; i < ns.size(); ++i)
     changed[i] = changed[i] || i >= n0 ||
                  (i < horizon_before.size() && horizon_before[i] != ns.horizon[i]);
-  rebuild_families(m, memory, n0, changed);
+  st.rebuilt = rebuild_families(m, memory, n0, changed);
   st.momentum_after = linear_momentum(ns);
   st.kinetic_after = kinetic_energy(ns);
   st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

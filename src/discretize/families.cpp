@@ -9,10 +9,24 @@ namespace periadapt {
 
 BondFamilies build_families(const NodeSet& nodes, const QuadratureSpec& quad,
                             const BondFamilies* keep, const std::vector<char>* rebuild) {
-  const std::size_t n = nodes.size();
   BondFamilies fam;
+  build_families_into(fam, nodes, quad, keep, rebuild);
+  return fam;
+}
+
+void build_families_into(BondFamilies& fam, const NodeSet& nodes, const QuadratureSpec& quad,
+                         const BondFamilies* keep, const std::vector<char>* rebuild) {
+  const std::size_t n = nodes.size();
   fam.offsets.assign(n + 1, 0);
-  if (n == 0) return fam;
+  fam.t_offsets.clear();
+  fam.t_owner.clear();
+  fam.t_bond.clear();
+  if (n == 0) {
+    fam.neighbor.clear();
+    fam.inv_length.clear();
+    fam.beta.clear();
+    return;
+  }
   double hmax = 0, dxmax = 0;
   for (std::size_t i = 0; i < n; ++i) {
     hmax = std::max(hmax, nodes.horizon[i]);
@@ -60,9 +74,19 @@ BondFamilies build_families(const NodeSet& nodes, const QuadratureSpec& quad,
   }
   for (std::size_t i = 0; i < n; ++i) fam.offsets[i + 1] += fam.offsets[i];
   const std::size_t total = fam.offsets[n];
-  fam.neighbor.resize(total);
-  fam.inv_length.resize(total);
-  fam.beta.resize(total);
+  // Reused storage (refinement events) grows with headroom and without copying stale contents,
+  // so that a run of events touches fresh memory only now and then.
+  auto fit = [total](auto& v) {
+    if (v.capacity() < total) {
+      v.clear();
+      v.shrink_to_fit();
+      v.reserve(total + total / 16);
+    }
+    v.resize(total);
+  };
+  fit(fam.neighbor);
+  fit(fam.inv_length);
+  fit(fam.beta);
 
   struct Entry {
     std::uint32_t j;
@@ -99,7 +123,6 @@ BondFamilies build_families(const NodeSet& nodes, const QuadratureSpec& quad,
       }
     }
   }
-  return fam;
 }
 
 void build_transpose(BondFamilies& bf) {
@@ -119,19 +142,22 @@ void build_transpose(BondFamilies& bf) {
     }
 }
 
-void mark_unbreakable_bonds(const NodeSet& ns, BondFamilies& bf) {
+void mark_unbreakable_bonds(const NodeSet& ns, BondFamilies& bf, const std::vector<char>* rows) {
   const std::size_t n = ns.size();
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i)
+    if (!rows || (*rows)[i])
     for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k)
       if ((ns.flags[i] | ns.flags[bf.neighbor[k]]) & kNoFail)
         bf.inv_length[k] = -std::abs(bf.inv_length[k]);
 }
 
-void update_damage_weights(NodeSet& nodes, const BondFamilies& bonds) {
+void update_damage_weights(NodeSet& nodes, const BondFamilies& bonds,
+                           const std::vector<char>* rows) {
   const std::size_t n = nodes.size();
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
+    if (rows && !(*rows)[i]) continue;
     double total = 0, broken = 0;
     for (std::uint64_t k = bonds.begin(i); k < bonds.end(i); ++k) {
       const double w = std::abs(static_cast<double>(bonds.beta[k])) * nodes.volume[bonds.neighbor[k]];

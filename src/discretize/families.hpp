@@ -18,13 +18,23 @@ BondFamilies build_families(const NodeSet& nodes, const QuadratureSpec& quadratu
                             const BondFamilies* keep = nullptr,
                             const std::vector<char>* rebuild = nullptr);
 
+// The same into `out` (not `keep`), reusing its storage: refinement events build into a spare
+// set of arrays instead of fresh ones, whose first touch (page faults, zero fill) cost about as
+// much as the rebuild itself on large models.
+void build_families_into(BondFamilies& out, const NodeSet& nodes, const QuadratureSpec& quadrature,
+                         const BondFamilies* keep = nullptr,
+                         const std::vector<char>* rebuild = nullptr);
+
 // Builds the transpose of the families (t_offsets, t_owner, t_bond), sorted by owner.
 void build_transpose(BondFamilies& bonds);
 
 // Bonds with an end on a no-fail node can never break (flag carried by the bond's sign).
-void mark_unbreakable_bonds(const NodeSet& nodes, BondFamilies& bonds);
+// `rows` (optional): only the rows of flagged nodes (the others are known to be up to date).
+void mark_unbreakable_bonds(const NodeSet& nodes, BondFamilies& bonds,
+                            const std::vector<char>* rows = nullptr);
 
 // Recomputes the damage denominators (sum of beta*V_j over each family) and numerators.
-void update_damage_weights(NodeSet& nodes, const BondFamilies& bonds);
+void update_damage_weights(NodeSet& nodes, const BondFamilies& bonds,
+                           const std::vector<char>* rows = nullptr);
 
 }  // namespace periadapt

@@ -154,20 +154,23 @@ void energy_kernel(const NodeSet& ns, const BondFamilies& bf, double eth, std::v
 }
 
 template <InfluenceShape S>
+double stiffness_row(const NodeSet& ns, const BondFamilies& bf, std::size_t i) {
+  const double inv_delta = 1.0 / ns.horizon[i];
+  double k = 0;
+  for (std::uint64_t q = bf.begin(i); q < bf.end(i); ++q) {
+    const double L = bf.length(q);
+    k += g<S>(L * inv_delta) * std::abs(static_cast<double>(bf.beta[q])) *
+         ns.volume[bf.neighbor[q]] / L;
+  }
+  return ns.micromodulus[i] * k;
+}
+
+template <InfluenceShape S>
 void stiffness_kernel(const NodeSet& ns, const BondFamilies& bf, std::vector<double>& K) {
   const std::size_t n = ns.size();
   K.assign(n, 0.0);
 #pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
-    const double inv_delta = 1.0 / ns.horizon[i];
-    double k = 0;
-    for (std::uint64_t q = bf.begin(i); q < bf.end(i); ++q) {
-      const double L = bf.length(q);
-      k += g<S>(L * inv_delta) * std::abs(static_cast<double>(bf.beta[q])) *
-           ns.volume[bf.neighbor[q]] / L;
-    }
-    K[i] = ns.micromodulus[i] * k;
-  }
+  for (std::size_t i = 0; i < n; ++i) K[i] = stiffness_row<S>(ns, bf, i);
 }
 
 template <template <int, InfluenceShape> class F, class... Args>
@@ -240,6 +243,15 @@ void pmb_energy_density(const NodeSet& nodes, const BondFamilies& bonds, Influen
 void pmb_stiffness_sum(const NodeSet& nodes, const BondFamilies& bonds, InfluenceShape shape,
                        std::vector<double>& K) {
   dispatch<StiffnessOp>(nodes.dim, shape, nodes, bonds, K);
+}
+
+double pmb_stiffness_row(const NodeSet& nodes, const BondFamilies& bonds, InfluenceShape shape,
+                         std::size_t i) {
+  switch (shape) {
+    case InfluenceShape::Constant: return stiffness_row<InfluenceShape::Constant>(nodes, bonds, i);
+    case InfluenceShape::Triangular: return stiffness_row<InfluenceShape::Triangular>(nodes, bonds, i);
+    default: return stiffness_row<InfluenceShape::InvertedTriangular>(nodes, bonds, i);
+  }
 }
 
 }  // namespace periadapt

@@ -36,5 +36,8 @@ void pmb_energy_density(const NodeSet& nodes, const BondFamilies& bonds, Influen
 // sum_j c_i g beta_j V_j / xi: the stiffness sum of the Silling-Askari stable-step bound.
 void pmb_stiffness_sum(const NodeSet& nodes, const BondFamilies& bonds, InfluenceShape shape,
                        std::vector<double>& K);
+// The same sum for one node.
+double pmb_stiffness_row(const NodeSet& nodes, const BondFamilies& bonds, InfluenceShape shape,
+                         std::size_t i);
 
 }  // namespace periadapt

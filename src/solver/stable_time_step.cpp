@@ -20,4 +20,18 @@ StableStep stable_time_step(const Model& model) {
   return best;
 }
 
+StableStep stable_time_step(const Model& model, const std::vector<std::uint32_t>& nodes) {
+  const NodeSet& ns = model.nodes;
+  const BondFamilies& bf = model.bonds;
+  StableStep best{std::numeric_limits<double>::infinity(), 0};
+  for (std::uint32_t i : nodes) {
+    if (!(ns.flags[i] & kActive)) continue;
+    const double k = pmb_stiffness_row(ns, bf, model.material.shape, i);
+    if (!(k > 0)) continue;
+    const double dt = std::sqrt(2.0 * ns.density[i] / k);
+    if (dt < best.dt) best = {dt, i};
+  }
+  return best;
+}
+
 }  // namespace periadapt
