@@ -71,7 +71,7 @@ bool pdro_bond_breaks(const NodeSet& ns, const BondFamilies& bf, std::size_t i, 
       !spec.region->contains({ns.x[0][i], ns.x[1][i], ns.x[2][i]}, 1e-9 * ns.spacing[i]))
     return true;
   spec.counters->checks.fetch_add(1, std::memory_order_relaxed);
-  const double L = bf.length(k), dxp = L / spec.n;
+  const double L = bf.length(k), dxp = std::min(L, ns.spacing[i]) / spec.n;
   const P3 I{ns.x[0][i], ns.x[1][i], ns.x[2][i]}, J{ns.x[0][j], ns.x[1][j], ns.x[2][j]};
   auto along = [&](double t) {
     P3 p = I;

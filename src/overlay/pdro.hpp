@@ -4,8 +4,12 @@
 //   i = I + dx' e,  i' = C - dx'/2 e,  j' = C + dx'/2 e,  j = J - dx' e   (C the midpoint),
 // whose displacements come from the PDDO over the material points of both families (damaged
 // ones included). The bond breaks only if one of the sub-pairs I-i, i'-j', j-J is stretched
-// beyond s0' = s0 sqrt(n); otherwise it stays and is checked again later. dx is the bond's
-// reference length. No node is added: the strength of the coarse grid follows the target dx'.
+// beyond s0' = s0 sqrt(n); otherwise it stays and is checked again later. dx is the grid spacing
+// of the bond's owner (the paper's figures show nearest neighbours, where it is also the bond
+// length; for longer bonds the sub-pairs stay dx/n long, at both ends and at the centre). Taking
+// the bond length instead makes the sub-pairs of long bonds longer and the overlay stiffer than
+// the paper reports: in the cooled disk the crack then starts 5 us late at n = 2. No node is
+// added: the strength of the coarse grid follows the target dx'.
 // Interpolation: the PDDO (the paper's choice) or, to compare, the PIM of AGRS: a linear fit over
 // the visible family of the nearer end node (intact bonds only, so it never bridges a crack).
 #include <atomic>
