@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "material/lps.hpp"
 #include "material/pmb.hpp"
 #include "model/build_model.hpp"
 #include "overlay/pddo.hpp"
@@ -40,10 +41,12 @@ TEST(Pdro, PddoReproducesLinearAndQuadraticFields) {
 namespace {
 
 // Bonds broken by one force pass under a uniform strain eps along x, with or without the overlay.
-std::size_t broken_under_uniform_strain(double eps, bool overlay) {
+std::size_t broken_under_uniform_strain(double eps, bool overlay, bool lps = false) {
   const std::string yaml =
-      "model: {dimension: 2, plane: strain}\n"
-      "material: {youngs_modulus: 72.0e9, density: 2400, critical_stretch: 1.0e-3}\n"
+      std::string(lps ? "model: {dimension: 2, plane: strain, formulation: lps}\n"
+                      : "model: {dimension: 2, plane: strain}\n") +
+      "material: {youngs_modulus: 72.0e9, density: 2400, critical_stretch: 1.0e-3" +
+      (lps ? ", poisson_ratio: 0.22}\n" : "}\n") +
       "discretization: {spacing: 0.001, horizon_factor: 4, body: {box: {min: [0, 0], max: [0.03, 0.02]}}}\n" +
       std::string(overlay ? "damage: {overlay: {n: 4}}\n" : "") + "solver: {steps: 1}\n";
   Model m = build_model(test::deck_from(yaml));
@@ -52,6 +55,9 @@ std::size_t broken_under_uniform_strain(double eps, bool overlay) {
     ns.u[0][i] = eps * ns.x[0][i];
     ns.sync_current(i);
   }
+  if (lps)
+    return lps_forces(ns, m.bonds, m.material.shape, m.material.lps_constants, true, m.lps_scratch,
+                      nullptr, nullptr, &m.pdro);
   return pmb_forces(ns, m.bonds, m.material.shape, true, nullptr, nullptr, &m.pdro).newly_broken;
 }
 
@@ -61,9 +67,12 @@ TEST(Pdro, OverlayRaisesTheStrengthOfAUniformFieldBySqrtN) {
   // A linear field has the same strain on the sub-grid as on the bond, so with n = 4 a bond only
   // breaks beyond 2 s0 (s0' = s0 sqrt(n)): at 1.5 s0 the plain model breaks the bonds along x,
   // the overlay keeps them; at 2.5 s0 both break.
-  EXPECT_GT(broken_under_uniform_strain(1.5e-3, false), 0u);
-  EXPECT_EQ(broken_under_uniform_strain(1.5e-3, true), 0u);
-  EXPECT_GT(broken_under_uniform_strain(2.5e-3, true), 0u);
+  for (bool lps : {false, true}) {
+    SCOPED_TRACE(lps ? "lps" : "pmb");
+    EXPECT_GT(broken_under_uniform_strain(1.5e-3, false, lps), 0u);
+    EXPECT_EQ(broken_under_uniform_strain(1.5e-3, true, lps), 0u);
+    EXPECT_GT(broken_under_uniform_strain(2.5e-3, true, lps), 0u);
+  }
 }
 
 TEST(Pdro, BarFailureStrainWithOverlayMatchesTheNativeFinerGrid) {

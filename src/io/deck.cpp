@@ -328,8 +328,7 @@ Deck parse_deck(const std::string& text, const std::string& name) {
                                   ? PdroInterpolation::Pim
                                   : PdroInterpolation::Pddo;
       pd->finish();
-      if (dk.formulation != "pmb")
-        dmg->fail("overlay", "the refinement overlay is available for the pmb formulation only");
+      // (bond_pairing is read later: checked below with the solver section)
     }
     dmg->finish();
   }
@@ -384,6 +383,9 @@ Deck parse_deck(const std::string& text, const std::string& name) {
         "dual_horizon";
     s.finish();
   }
+  if (dk.pdro.enabled && dk.dual_horizon)
+    top.fail("damage", "the refinement overlay works with bond_pairing: source_horizon (pmb or "
+                       "lps); the dual-horizon kernels do not re-check bonds");
   if (dk.thermal_strain != 0.0 &&
       (dk.solver != Deck::SolverType::Explicit || dk.formulation != "pmb" || dk.dual_horizon))
     top.fail("material", "thermal_strain is supported by the explicit pmb solver with "

@@ -75,7 +75,7 @@ void dilatation(const NodeSet& ns, const BondFamilies& bf, const LpsConstants& c
 
 template <int D, InfluenceShape S, bool E>
 std::size_t forces(NodeSet& ns, BondFamilies& bf, const LpsConstants& c, bool allow_breaking,
-                   LpsScratch& sc, std::vector<std::uint64_t>* log, double* W) {
+                   LpsScratch& sc, std::vector<std::uint64_t>* log, double* W, const PdroSpec* pdro) {
   dilatation<D, S>(ns, bf, c, sc);
   const std::size_t n = ns.size();
   const double* yp = ns.cur.data();
@@ -132,7 +132,7 @@ std::size_t forces(NodeSet& ns, BondFamilies& bf, const LpsConstants& c, bool al
         const double x = 1.0 / std::abs(inv_len[k]);
         const double e = r - x;
         const double V = yp[j + 3] * static_cast<double>(b);
-        if (inv_len[k] > 0.0 && e > s0 * x) {
+        if (inv_len[k] > 0.0 && e > s0 * x && (!pdro || pdro_bond_breaks(ns, bf, i, k, s0, *pdro))) {
           beta[k] = -b;
           bw += V;
           ++nb;
@@ -168,34 +168,39 @@ std::size_t forces(NodeSet& ns, BondFamilies& bf, const LpsConstants& c, bool al
 
 template <int D, bool E>
 std::size_t forces_shape(InfluenceShape s, NodeSet& ns, BondFamilies& bf, const LpsConstants& c,
-                         bool brk, LpsScratch& sc, std::vector<std::uint64_t>* log, double* W) {
+                         bool brk, LpsScratch& sc, std::vector<std::uint64_t>* log, double* W,
+                         const PdroSpec* pdro) {
   switch (s) {
     case InfluenceShape::Constant:
-      return forces<D, InfluenceShape::Constant, E>(ns, bf, c, brk, sc, log, W);
+      return forces<D, InfluenceShape::Constant, E>(ns, bf, c, brk, sc, log, W, pdro);
     case InfluenceShape::Triangular:
-      return forces<D, InfluenceShape::Triangular, E>(ns, bf, c, brk, sc, log, W);
+      return forces<D, InfluenceShape::Triangular, E>(ns, bf, c, brk, sc, log, W, pdro);
     default:
-      return forces<D, InfluenceShape::InvertedTriangular, E>(ns, bf, c, brk, sc, log, W);
+      return forces<D, InfluenceShape::InvertedTriangular, E>(ns, bf, c, brk, sc, log, W, pdro);
   }
 }
 
 template <bool E>
 std::size_t forces_dim(InfluenceShape s, NodeSet& ns, BondFamilies& bf, const LpsConstants& c,
-                       bool brk, LpsScratch& sc, std::vector<std::uint64_t>* log, double* W) {
-  return ns.dim == 3 ? forces_shape<3, E>(s, ns, bf, c, brk, sc, log, W)
-                     : forces_shape<2, E>(s, ns, bf, c, brk, sc, log, W);
+                       bool brk, LpsScratch& sc, std::vector<std::uint64_t>* log, double* W,
+                       const PdroSpec* pdro) {
+  return ns.dim == 3 ? forces_shape<3, E>(s, ns, bf, c, brk, sc, log, W, pdro)
+                     : forces_shape<2, E>(s, ns, bf, c, brk, sc, log, W, pdro);
 }
 
 }  // namespace
 
 std::size_t lps_forces(NodeSet& ns, BondFamilies& bf, InfluenceShape shape, const LpsConstants& c,
                        bool allow_breaking, LpsScratch& sc, std::vector<std::uint64_t>* log,
-                       std::vector<double>* Wout) {
+                       std::vector<double>* Wout, const PdroSpec* pdro) {
+  if (pdro && !pdro->enabled) pdro = nullptr;
+  if (pdro && allow_breaking && pdro->interpolation == PdroInterpolation::Pim)
+    pdro->visible_beta->assign(bf.beta.begin(), bf.beta.end());
   if (Wout) {
     Wout->assign(ns.size(), 0.0);
-    return forces_dim<true>(shape, ns, bf, c, allow_breaking, sc, log, Wout->data());
+    return forces_dim<true>(shape, ns, bf, c, allow_breaking, sc, log, Wout->data(), pdro);
   }
-  return forces_dim<false>(shape, ns, bf, c, allow_breaking, sc, log, nullptr);
+  return forces_dim<false>(shape, ns, bf, c, allow_breaking, sc, log, nullptr, pdro);
 }
 
 namespace {

@@ -17,6 +17,7 @@
 #include "core/bond_families.hpp"
 #include "core/node_set.hpp"
 #include "material/micromodulus.hpp"
+#include "overlay/pdro.hpp"
 
 namespace periadapt {
 
@@ -41,10 +42,12 @@ struct LpsScratch {
   std::vector<double> packed;
 };
 
-// Force densities (and bond breaking, broken-bond log, energy density as for PMB).
+// Force densities (and bond breaking, broken-bond log, energy density, refinement overlay as
+// for PMB).
 std::size_t lps_forces(NodeSet& nodes, BondFamilies& bonds, InfluenceShape shape,
                        const LpsConstants& c, bool allow_breaking, LpsScratch& scratch,
-                       std::vector<std::uint64_t>* broken_log, std::vector<double>* W);
+                       std::vector<std::uint64_t>* broken_log, std::vector<double>* W,
+                       const PdroSpec* pdro = nullptr);
 
 // Weighted volume and dilatation of every active node into `scratch` (the first pass).
 void lps_dilatation(const NodeSet& nodes, const BondFamilies& bonds, InfluenceShape shape,

@@ -13,7 +13,7 @@ std::size_t internal_forces(Model& m, bool allow_breaking, std::vector<std::uint
                            allow_breaking, m.lps_scratch, log, W);
   if (m.material.lps)
     return lps_forces(m.nodes, m.bonds, m.material.shape, m.material.lps_constants, allow_breaking,
-                      m.lps_scratch, log, W);
+                      m.lps_scratch, log, W, &m.pdro);
   if (m.dual_horizon)
     return pmb_dual_forces(m.nodes, m.bonds, m.material.shape, allow_breaking, log, W);
   return pmb_forces(m.nodes, m.bonds, m.material.shape, allow_breaking, log, W, &m.pdro,
