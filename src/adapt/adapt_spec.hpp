@@ -44,6 +44,7 @@ struct AdaptSpec {
   bool total_energy = false;              // trigger on W + kinetic energy density (Bobaru)
   bool coarsen = false;                   // return quiet refined zones to their parents
   double visibility_factor = 1.0;         // visibility radius in horizons of the flagged node
+  bool conserve_energy = false;           // rescale rebuilt rows' velocities so events keep K + U
 };
 
 }  // namespace periadapt

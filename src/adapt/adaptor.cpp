@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "adapt/coarsen.hpp"
+#include "analysis/energy.hpp"
 #include "core/cell_grid.hpp"
 #include "adapt/triggers.hpp"
 #include "solver/internal_forces.hpp"
@@ -32,6 +33,40 @@ std::size_t Adaptor::nodes_removed() const {
   return n;
 }
 
+double Adaptor::total_energy() {
+  std::vector<double> W;
+  return kinetic_energy(m_.nodes) + strain_energy(m_, W);
+}
+
+void Adaptor::restore_energy(double h_before, const std::vector<std::uint32_t>& rows) {
+  NodeSet& ns = m_.nodes;
+  const double dh = total_energy() - h_before;
+  // Scale the velocities of the rebuilt rows about their mass-weighted mean (momentum kept) so
+  // that their kinetic energy absorbs the change of the total energy the event made.
+  double M = 0, P[3] = {0, 0, 0};
+  for (std::uint32_t i : rows) {
+    if (!(ns.flags[i] & kActive) || (ns.flags[i] & kBoundary)) continue;
+    const double mi = ns.density[i] * ns.volume[i];
+    M += mi;
+    for (int d = 0; d < ns.dim; ++d) P[d] += mi * ns.v[d][i];
+  }
+  if (!(M > 0)) return;
+  double krel = 0;
+  for (std::uint32_t i : rows) {
+    if (!(ns.flags[i] & kActive) || (ns.flags[i] & kBoundary)) continue;
+    for (int d = 0; d < ns.dim; ++d) {
+      const double w = ns.v[d][i] - P[d] / M;
+      krel += 0.5 * ns.density[i] * ns.volume[i] * w * w;
+    }
+  }
+  if (!(krel > 0)) return;
+  const double lambda = std::sqrt(std::max(0.0, (krel - dh) / krel));
+  for (std::uint32_t i : rows) {
+    if (!(ns.flags[i] & kActive) || (ns.flags[i] & kBoundary)) continue;
+    for (int d = 0; d < ns.dim; ++d) ns.v[d][i] = P[d] / M + lambda * (ns.v[d][i] - P[d] / M);
+  }
+}
+
 std::vector<std::uint32_t> Adaptor::parents_for(const std::vector<std::uint32_t>& ids) const {
   if (ids.empty()) return {};
   return apply_visibility(m_, ids, refinable_nodes(m_, spec_), spec_.visibility_factor);
@@ -45,7 +80,9 @@ void Adaptor::refine(const std::vector<std::uint32_t>& parents, std::size_t iden
   ev.time = vv_.time();
   ev.trigger = trigger;
   ev.identified = identified;
+  const double h0 = spec_.conserve_energy ? total_energy() : 0.0;
   ev.stats = refine_nodes(m_, parents, spec_);
+  if (spec_.conserve_energy) restore_energy(h0, ev.stats.rebuilt);
   std::size_t active = 0;
   for (auto f : m_.nodes.flags) active += (f & kActive) != 0;
   ev.active_nodes = active;
@@ -103,7 +140,9 @@ void Adaptor::coarsen_quiet(const std::vector<double>& E, double alpha,
   ev.time = vv_.time();
   ev.trigger = "coarsen";
   ev.identified = quiet.size();
+  const double h0 = spec_.conserve_energy ? total_energy() : 0.0;
   ev.stats = coarsen_nodes(m_, quiet);
+  if (spec_.conserve_energy) restore_energy(h0, ev.stats.rebuilt);
   std::size_t active = 0;
   for (auto f : ns.flags) active += (f & kActive) != 0;
   ev.active_nodes = active;

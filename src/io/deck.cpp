@@ -442,6 +442,7 @@ Deck parse_deck(const std::string& text, const std::string& name) {
     ad.damage_trigger = a->boolean("damage_trigger", false);
     ad.total_energy = a->choice("energy", {"strain", "total"}, "strain") == "total";
     ad.coarsen = a->boolean("coarsen", false);
+    ad.conserve_energy = a->boolean("conserve_energy", false);
     if (ad.coarsen && ad.method == NodeGeneration::A)
       a->fail("coarsen", "coarsening restores parents from their children (method b); method a "
                          "keeps the parents and is not coarsened");

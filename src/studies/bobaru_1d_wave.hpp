@@ -16,7 +16,9 @@ struct WaveArrival {
 // One grid of Table IV (uniform) or Table V (adaptive: level-1 refinement where the total energy
 // density reaches 75% of its maximum, within 6 horizons, coarsening behind the pulse): `nodes`
 // nodes on [0, 450], horizon `delta`.
-WaveArrival bobaru_wave_arrival(int nodes, double delta, bool adaptive = false);
+// `scaling` (adaptive only): the AGRS horizon scaling of the refined zone, "delta" or "m".
+WaveArrival bobaru_wave_arrival(int nodes, double delta, bool adaptive = false,
+                                const std::string& scaling = "delta");
 
 int run_bobaru_1d_wave_study(const std::string& out_dir);
 
