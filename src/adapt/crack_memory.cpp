@@ -26,7 +26,8 @@ CrackMemory remember_cracks(const Model& m, const std::vector<char>& vanishing,
   const NodeSet& ns = m.nodes;
   const BondFamilies& bf = m.bonds;
   CrackMemory mem;
-  if (ns.dim != 2) return mem;  // 3D: pre-cracks are re-cut, facets are not kept (see notes)
+  const int D = ns.dim;
+  if (D == 1) return mem;  // a 1D bar has no crack paths to carry over
   // Only the rows of the nodes that vanish or get new nodes around them: a facet stands for a
   // broken bond with such an end, in either direction (rows are sorted by neighbour id, so the
   // reverse bond is found by bisection).
@@ -42,18 +43,32 @@ CrackMemory remember_cracks(const Model& m, const std::vector<char>& vanishing,
     for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {
       const std::uint32_t j = bf.neighbor[k];
       if (BondFamilies::intact(bf.beta[k]) && !broken(j, static_cast<std::uint32_t>(i))) continue;
-      const Vec3 xi{ns.x[0][i], ns.x[1][i], 0}, xj{ns.x[0][j], ns.x[1][j], 0};
+      const Vec3 xi{ns.x[0][i], ns.x[1][i], D == 3 ? ns.x[2][i] : 0.0},
+          xj{ns.x[0][j], ns.x[1][j], D == 3 ? ns.x[2][j] : 0.0};
       // Pre-crack bonds are cut again geometrically after the rebuild.
       bool precrack = false;
       for (const PreCrack& c : m.cracks)
-        precrack = precrack || bond_crosses_segment(xi, xj, c.points[0], c.points[1]);
+        precrack = precrack || (c.planar3d ? bond_crosses_quad(xi, xj, c.points)
+                                           : bond_crosses_segment(xi, xj, c.points[0], c.points[1]));
       if (precrack) continue;
-      const Vec3 mid = scale(add(xi, xj), 0.5), e = sub(xj, xi);
-      const double L = norm(e);
+      const Vec3 mid = scale(add(xi, xj), 0.5), e = scale(sub(xj, xi), 1.0 / norm(sub(xj, xi)));
       // Short facets: the bond says the crack crosses it, not where nor how it is oriented.
       const double half = 0.25 * std::min(ns.spacing[i], ns.spacing[j]);
-      const Vec3 t{-e[1] / L * half, e[0] / L * half, 0};
-      mem.facets.push_back({sub(mid, t), add(mid, t)});
+      Facet f;
+      if (D == 2) {
+        const Vec3 t{-e[1] * half, e[0] * half, 0};
+        f.a = sub(mid, t);
+        f.b = add(mid, t);
+      } else {
+        // A square across the bond: two unit vectors normal to it.
+        const Vec3 axis = std::abs(e[0]) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
+        Vec3 u = cross(e, axis);
+        u = scale(u, half / norm(u));
+        const Vec3 w = scale(cross(e, u), 1.0);  // |e x u| = |u|
+        f.in3d = true;
+        f.quad = {sub(sub(mid, u), w), sub(add(mid, u), w), add(add(mid, u), w), add(sub(mid, u), w)};
+      }
+      mem.facets.push_back(f);
     }
   }
   return mem;
@@ -112,9 +127,11 @@ std::vector<std::uint32_t> rebuild_families(Model& m, const CrackMemory& mem,
   double reach = 0;
   if (!mem.facets.empty()) {
     for (auto& v : fx) v.resize(mem.facets.size());
-    for (std::size_t f = 0; f < mem.facets.size(); ++f)
-      for (int d = 0; d < 3; ++d) fx[d][f] = 0.5 * (mem.facets[f].a[d] + mem.facets[f].b[d]);
-    for (const Facet& f : mem.facets) reach = std::max(reach, 0.5 * norm(sub(f.b, f.a)));
+    for (std::size_t f = 0; f < mem.facets.size(); ++f) {
+      const Vec3 c = mem.facets[f].centre();
+      for (int d = 0; d < 3; ++d) fx[d][f] = c[d];
+    }
+    for (const Facet& f : mem.facets) reach = std::max(reach, f.reach());
   }
   double hmax_all = 0;
   for (std::size_t i = 0; i < ns.size(); ++i)
@@ -132,11 +149,12 @@ std::vector<std::uint32_t> rebuild_families(Model& m, const CrackMemory& mem,
         broken = std::binary_search(broken_pairs.begin(), broken_pairs.end(),
                                     pair_key(static_cast<std::uint32_t>(i), j));
       } else if (fgrid) {
-        const Vec3 xi{ns.x[0][i], ns.x[1][i], 0}, xj{ns.x[0][j], ns.x[1][j], 0};
+        const Vec3 xi{ns.x[0][i], ns.x[1][i], D == 3 ? ns.x[2][i] : 0.0},
+            xj{ns.x[0][j], ns.x[1][j], D == 3 ? ns.x[2][j] : 0.0};
         const Vec3 mid = scale(add(xi, xj), 0.5);
         const double r = 0.5 * norm(sub(xj, xi)) + reach;
-        fgrid->for_each_within({mid[0], mid[1], 0}, r, [&](std::uint32_t f, double) {
-          if (!broken && bond_crosses_segment(xi, xj, mem.facets[f].a, mem.facets[f].b)) broken = true;
+        fgrid->for_each_within(mid, r, [&](std::uint32_t f, double) {
+          if (!broken && mem.facets[f].crossed_by(xi, xj)) broken = true;
         });
       }
       if (broken) bf.beta[k] = -bf.beta[k];

@@ -1,8 +1,9 @@
 #pragma once
 // What a change of the node set (refinement, coarsening) must carry over to the new bond
-// families: short crack facets standing for the broken bonds of the nodes that vanish, so that
-// new bonds crossing them start broken. (Broken bonds between surviving nodes are read from the
-// old families by rebuild_families itself.)
+// families: short crack facets (2D segments, 3D squares) standing for the broken bonds of the
+// nodes that vanish, so that new bonds crossing them start broken. (Broken bonds between
+// surviving nodes are read from the old families by rebuild_families itself.)
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -11,8 +12,21 @@
 
 namespace periadapt {
 
+// A short piece of crack standing for one broken bond: a segment across it in the xy-plane (2D)
+// or a small square across it (3D), centred on the bond's midpoint.
 struct Facet {
-  Vec3 a, b;  // a segment in the xy-plane (2D)
+  Vec3 a, b;                   // 2D segment
+  std::array<Vec3, 4> quad{};  // 3D square
+  bool in3d = false;
+  Vec3 centre() const {
+    return in3d ? scale(add(quad[0], quad[2]), 0.5) : scale(add(a, b), 0.5);
+  }
+  double reach() const {  // farthest point from the centre
+    return in3d ? norm(sub(quad[0], centre())) : 0.5 * norm(sub(b, a));
+  }
+  bool crossed_by(const Vec3& p, const Vec3& q) const {
+    return in3d ? bond_crosses_quad(p, q, quad) : bond_crosses_segment(p, q, a, b);
+  }
 };
 
 struct CrackMemory {
