@@ -54,6 +54,17 @@ TEST(Threads, ResultsDoNotDependOnThreadCount) {
   expect_same_with_1_and_2_threads(branching_plate(""));
 }
 
+TEST(Threads, AdaptiveResultsDoNotDependOnThreadCount) {
+  // AGRS with both triggers (refinement from 4 us, steps undone and redone, refinement ahead of
+  // the running crack), with node generation B and A.
+  for (const char* method : {"B", "A"}) {
+    SCOPED_TRACE(method);
+    expect_same_with_1_and_2_threads(branching_plate(
+        std::string("adapt: {max_level: 1, method: ") + method +
+        ", start_time: 4.0e-6, energy_trigger: 0.7, damage_trigger: true}\n"));
+  }
+}
+
 TEST(Threads, OverlayResultsDoNotDependOnThreadCount) {
   for (const char* interp : {"pddo", "pim"}) {
     SCOPED_TRACE(interp);
