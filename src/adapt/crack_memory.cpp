@@ -114,9 +114,10 @@ std::vector<std::uint32_t> rebuild_families(Model& m, const CrackMemory& mem,
         broken_pairs.push_back(pair_key(static_cast<std::uint32_t>(i), bf.neighbor[k]));
   }
   std::sort(broken_pairs.begin(), broken_pairs.end());
-  build_families_into(m.spare_bonds, ns, m.quadrature, global ? nullptr : &bf,
-                      global ? nullptr : &rebuild);
-  std::swap(m.bonds, m.spare_bonds);
+  if (global)
+    bf = build_families(ns, m.quadrature);
+  else
+    rebuild_rows(bf, ns, m.quadrature, rebuild);
   if (global) std::fill(rebuild.begin(), rebuild.end(), 1);
   if (m.surface_correction)
     apply_surface_correction(ns, bf, m.material.shape,

@@ -1,7 +1,10 @@
 #pragma once
 // Bond families in compressed sparse rows over owner nodes. Each pair is stored by both owners
 // (full lists), so the force loop writes only to its own node and needs no atomics; variable and
-// dual horizons need the two directions to differ anyway.
+// dual horizons need the two directions to differ anyway. Row i is [begin(i), end(i)) in the
+// bond arrays: rows are contiguous and in node order after a full build; a refinement event
+// writes the rows it searches again at the end of the arrays (the old entries become unused
+// slack, compacted away when it grows large), so an event does not move the rest.
 //
 // Per bond: neighbor id (4 B), inverse reference length (8 B), quadrature fraction beta (4 B)
 // = 16 B. Two flags ride on signs, so the force loop needs no extra gathers:
@@ -14,7 +17,9 @@
 namespace periadapt {
 
 struct BondFamilies {
-  std::vector<std::uint64_t> offsets{0};  // size n+1
+  std::vector<std::uint64_t> offsets{0};  // row begins, size n+1 (offsets[n]: end of the arrays)
+  std::vector<std::uint64_t> ends;        // row ends, size n
+  std::uint64_t live = 0;                 // bonds in rows (the arrays may hold unused slack)
   std::vector<std::uint32_t> neighbor;
   std::vector<double> inv_length;  // 1/|xi|, negative when the bond cannot break
   std::vector<float> beta;
@@ -26,9 +31,15 @@ struct BondFamilies {
   std::vector<std::uint64_t> t_bond;
 
   std::size_t num_nodes() const { return offsets.size() - 1; }
-  std::size_t num_bonds() const { return neighbor.size(); }
+  std::size_t num_bonds() const { return live; }
   std::uint64_t begin(std::size_t i) const { return offsets[i]; }
-  std::uint64_t end(std::size_t i) const { return offsets[i + 1]; }
+  std::uint64_t end(std::size_t i) const { return ends[i]; }
+  // After filling offsets as a contiguous prefix sum (row i ends where row i+1 begins).
+  void close_contiguous() {
+    const std::size_t n = num_nodes();
+    ends.assign(offsets.begin() + 1, offsets.end());
+    live = n ? offsets[n] : 0;
+  }
   static bool intact(float b) { return b > 0.0f; }
   double length(std::size_t k) const { return 1.0 / std::abs(inv_length[k]); }
   bool breakable(std::size_t k) const { return inv_length[k] > 0.0; }

@@ -7,128 +7,184 @@
 
 namespace periadapt {
 
-BondFamilies build_families(const NodeSet& nodes, const QuadratureSpec& quad,
-                            const BondFamilies* keep, const std::vector<char>* rebuild) {
-  BondFamilies fam;
-  build_families_into(fam, nodes, quad, keep, rebuild);
-  return fam;
-}
+namespace {
 
-void build_families_into(BondFamilies& fam, const NodeSet& nodes, const QuadratureSpec& quad,
-                         const BondFamilies* keep, const std::vector<char>* rebuild) {
-  const std::size_t n = nodes.size();
-  fam.offsets.assign(n + 1, 0);
-  fam.t_offsets.clear();
-  fam.t_owner.clear();
-  fam.t_bond.clear();
-  if (n == 0) {
-    fam.neighbor.clear();
-    fam.inv_length.clear();
-    fam.beta.clear();
-    return;
-  }
-  double hmax = 0, dxmax = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    hmax = std::max(hmax, nodes.horizon[i]);
-    dxmax = std::max(dxmax, nodes.spacing[i]);
-  }
-  hmax = quadrature_search_radius(quad.rule, nodes.dim, hmax, dxmax);
-  auto copied = [&](std::size_t i) {
-    return keep && rebuild && i < keep->num_nodes() && !(*rebuild)[i];
-  };
-  CellGrid grid(nodes.dim, {nodes.x[0].data(), nodes.x[1].data(), nodes.x[2].data()}, n, hmax);
+struct Entry {
+  std::uint32_t j;
+  float beta;
+  double inv_len;
+};
+
+// The neighbor search: a cell list over all nodes with the largest search radius.
+class FamilySearch {
+ public:
+  FamilySearch(const NodeSet& nodes, const QuadratureSpec& quad)
+      : nodes_(nodes), quad_(quad), grid_(nodes.dim,
+                                          {nodes.x[0].data(), nodes.x[1].data(), nodes.x[2].data()},
+                                          nodes.size(), search_radius(nodes, quad)) {}
 
   // Calls visit(j, 1/xi, beta) for every family member of node i, in a fixed order.
-  auto visit_family = [&](std::size_t i, auto&& visit) {
+  template <class Visit>
+  void visit(std::size_t i, Visit&& visit) const {
+    const NodeSet& nodes = nodes_;
     const std::array<double, 3> p{nodes.x[0][i], nodes.x[1][i], nodes.x[2][i]};
     const double delta = nodes.horizon[i];
-    const double radius = quadrature_search_radius(quad.rule, nodes.dim, delta, nodes.spacing[i]);
+    const double radius = quadrature_search_radius(quad_.rule, nodes.dim, delta, nodes.spacing[i]);
     // Nodes exactly on the horizon (m integer) are included whatever the rounding.
-    grid.for_each_within(p, radius * (1 + 1e-12), [&](std::uint32_t j, double d2) {
+    grid_.for_each_within(p, radius * (1 + 1e-12), [&](std::uint32_t j, double d2) {
       if (j == i || !(nodes.flags[j] & kActive)) return;
       const double xi = std::sqrt(d2);
       double b;
-      if (quad.rule == Quadrature::Subcell || quad.rule == Quadrature::IpaHybrid) {
+      if (quad_.rule == Quadrature::Subcell || quad_.rule == Quadrature::IpaHybrid) {
         const std::array<double, 3> off{nodes.x[0][j] - p[0], nodes.x[1][j] - p[1],
                                         nodes.x[2][j] - p[2]};
-        b = subcell_fraction(nodes.dim, off, delta, nodes.spacing[j], quad.lattice_rotation);
+        b = subcell_fraction(nodes.dim, off, delta, nodes.spacing[j], quad_.lattice_rotation);
       } else {
-        b = partial_volume_factor(quad.rule, std::min(xi, delta), delta, nodes.spacing[j]);
+        b = partial_volume_factor(quad_.rule, std::min(xi, delta), delta, nodes.spacing[j]);
       }
       if (b > 0) visit(j, 1.0 / xi, static_cast<float>(b));
     });
-  };
-
-  // Two passes (count, then fill in place) so that the only bond-sized memory ever allocated is
-  // the final CSR arrays: no per-thread buffers, no copy.
-#pragma omp parallel for schedule(dynamic, 256)
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!(nodes.flags[i] & kActive)) continue;
-    if (copied(i)) {
-      fam.offsets[i + 1] = keep->end(i) - keep->begin(i);
-      continue;
-    }
-    std::uint64_t cnt = 0;
-    visit_family(i, [&](std::uint32_t, double, float) { ++cnt; });
-    fam.offsets[i + 1] = cnt;
   }
-  for (std::size_t i = 0; i < n; ++i) fam.offsets[i + 1] += fam.offsets[i];
-  const std::size_t total = fam.offsets[n];
-  // Reused storage (refinement events) grows with headroom and without copying stale contents,
-  // so that a run of events touches fresh memory only now and then.
-  auto fit = [total](auto& v) {
-    if (v.capacity() < total) {
-      v.clear();
-      v.shrink_to_fit();
-      v.reserve(total + total / 16);
+
+  std::uint64_t count(std::size_t i) const {
+    std::uint64_t c = 0;
+    visit(i, [&](std::uint32_t, double, float) { ++c; });
+    return c;
+  }
+
+  // Writes row i, sorted by neighbour id (independent of the cell layout, friendlier to the
+  // caches), at position `at` of the bond arrays.
+  void write(std::size_t i, std::uint64_t at, BondFamilies& fam, std::vector<Entry>& scratch) const {
+    scratch.clear();
+    visit(i, [&](std::uint32_t j, double il, float b) { scratch.push_back({j, b, il}); });
+    std::sort(scratch.begin(), scratch.end(), [](const Entry& a, const Entry& b) { return a.j < b.j; });
+    for (const Entry& e : scratch) {
+      fam.neighbor[at] = e.j;
+      fam.inv_length[at] = e.inv_len;
+      fam.beta[at] = e.beta;
+      ++at;
     }
+  }
+
+ private:
+  static double search_radius(const NodeSet& nodes, const QuadratureSpec& quad) {
+    double hmax = 0, dxmax = 0;
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+      hmax = std::max(hmax, nodes.horizon[i]);
+      dxmax = std::max(dxmax, nodes.spacing[i]);
+    }
+    return std::max(quadrature_search_radius(quad.rule, nodes.dim, hmax, dxmax), 1e-300);
+  }
+  const NodeSet& nodes_;
+  const QuadratureSpec& quad_;
+  CellGrid grid_;
+};
+
+// Bond arrays of at least `total` entries; growth leaves headroom so that a run of refinement
+// events reallocates only now and then.
+void grow_bond_arrays(BondFamilies& fam, std::size_t total) {
+  auto fit = [total](auto& v) {
+    if (v.capacity() < total) v.reserve(total + total / 16);
     v.resize(total);
   };
   fit(fam.neighbor);
   fit(fam.inv_length);
   fit(fam.beta);
+}
 
-  struct Entry {
-    std::uint32_t j;
-    float beta;
-    double inv_len;
-  };
+}  // namespace
+
+BondFamilies build_families(const NodeSet& nodes, const QuadratureSpec& quad) {
+  const std::size_t n = nodes.size();
+  BondFamilies fam;
+  fam.offsets.assign(n + 1, 0);
+  if (n == 0) return fam;  // no rows: ends empty, live 0
+  const FamilySearch search(nodes, quad);
+  // Two passes (count, then fill in place) so that the only bond-sized memory ever allocated is
+  // the final CSR arrays: no per-thread buffers, no copy.
+#pragma omp parallel for schedule(dynamic, 256)
+  for (std::size_t i = 0; i < n; ++i)
+    if (nodes.flags[i] & kActive) fam.offsets[i + 1] = search.count(i);
+  for (std::size_t i = 0; i < n; ++i) fam.offsets[i + 1] += fam.offsets[i];
+  fam.neighbor.resize(fam.offsets[n]);
+  fam.inv_length.resize(fam.offsets[n]);
+  fam.beta.resize(fam.offsets[n]);
 #pragma omp parallel
   {
     std::vector<Entry> scratch;
 #pragma omp for schedule(dynamic, 256)
+    for (std::size_t i = 0; i < n; ++i)
+      if (nodes.flags[i] & kActive) search.write(i, fam.offsets[i], fam, scratch);
+  }
+  fam.close_contiguous();
+  return fam;
+}
+
+void rebuild_rows(BondFamilies& fam, const NodeSet& nodes, const QuadratureSpec& quad,
+                  const std::vector<char>& rows) {
+  const std::size_t n = nodes.size(), n_old = fam.num_nodes();
+  const std::uint64_t tail = fam.neighbor.size();
+  // New nodes start with empty rows.
+  fam.offsets.resize(n + 1, tail);
+  fam.ends.resize(n, tail);
+  for (std::size_t i = n_old; i < n; ++i) fam.offsets[i] = fam.ends[i] = tail;
+  fam.t_offsets.clear();
+  fam.t_owner.clear();
+  fam.t_bond.clear();
+  std::vector<std::uint32_t> list;
+  for (std::size_t i = 0; i < n; ++i)
+    if (i < rows.size() && rows[i]) list.push_back(static_cast<std::uint32_t>(i));
+  if (list.empty()) return;
+  const FamilySearch search(nodes, quad);
+  std::vector<std::uint64_t> count(list.size(), 0);
+#pragma omp parallel for schedule(dynamic, 64)
+  for (std::size_t r = 0; r < list.size(); ++r)
+    if (nodes.flags[list[r]] & kActive) count[r] = search.count(list[r]);
+  // Rebuilt rows go after everything else, in node order; their old entries become slack.
+  std::uint64_t at = tail;
+  for (std::size_t r = 0; r < list.size(); ++r) {
+    const std::size_t i = list[r];
+    fam.live -= fam.ends[i] - fam.offsets[i];
+    fam.offsets[i] = at;
+    fam.ends[i] = at + count[r];
+    fam.live += count[r];
+    at += count[r];
+  }
+  grow_bond_arrays(fam, at);
+  fam.offsets[n] = at;
+#pragma omp parallel
+  {
+    std::vector<Entry> scratch;
+#pragma omp for schedule(dynamic, 64)
+    for (std::size_t r = 0; r < list.size(); ++r)
+      if (count[r] > 0) search.write(list[r], fam.offsets[list[r]], fam, scratch);
+  }
+  // Slack above a quarter of the live bonds: one compacting copy, rows back in node order.
+  if (fam.neighbor.size() - fam.live > fam.live / 4) {
+    BondFamilies c;
+    c.offsets.assign(n + 1, 0);
+    for (std::size_t i = 0; i < n; ++i) c.offsets[i + 1] = c.offsets[i] + (fam.ends[i] - fam.offsets[i]);
+    c.neighbor.resize(c.offsets[n]);
+    c.inv_length.resize(c.offsets[n]);
+    c.beta.resize(c.offsets[n]);
+#pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
-      if (!(nodes.flags[i] & kActive)) continue;
-      if (copied(i)) {
-        const std::uint64_t b = keep->begin(i), e = keep->end(i), o = fam.offsets[i];
-        std::copy(keep->neighbor.begin() + static_cast<long>(b), keep->neighbor.begin() + static_cast<long>(e),
-                  fam.neighbor.begin() + static_cast<long>(o));
-        std::copy(keep->inv_length.begin() + static_cast<long>(b), keep->inv_length.begin() + static_cast<long>(e),
-                  fam.inv_length.begin() + static_cast<long>(o));
-        std::copy(keep->beta.begin() + static_cast<long>(b), keep->beta.begin() + static_cast<long>(e),
-                  fam.beta.begin() + static_cast<long>(o));
-        continue;
-      }
-      scratch.clear();
-      visit_family(i, [&](std::uint32_t j, double il, float b) { scratch.push_back({j, b, il}); });
-      // Sorted families: independent of the cell layout and friendlier to the caches.
-      std::sort(scratch.begin(), scratch.end(),
-                [](const Entry& a, const Entry& b) { return a.j < b.j; });
-      std::size_t k = fam.offsets[i];
-      for (const Entry& e : scratch) {
-        fam.neighbor[k] = e.j;
-        fam.inv_length[k] = e.inv_len;
-        fam.beta[k] = e.beta;
-        ++k;
-      }
+      const auto b = static_cast<long>(fam.offsets[i]), e = static_cast<long>(fam.ends[i]);
+      const auto o = static_cast<long>(c.offsets[i]);
+      std::copy(fam.neighbor.begin() + b, fam.neighbor.begin() + e, c.neighbor.begin() + o);
+      std::copy(fam.inv_length.begin() + b, fam.inv_length.begin() + e, c.inv_length.begin() + o);
+      std::copy(fam.beta.begin() + b, fam.beta.begin() + e, c.beta.begin() + o);
     }
+    c.close_contiguous();
+    fam = std::move(c);
   }
 }
 
 void build_transpose(BondFamilies& bf) {
   const std::size_t n = bf.num_nodes();
   bf.t_offsets.assign(n + 1, 0);
-  for (std::uint32_t j : bf.neighbor) ++bf.t_offsets[j + 1];
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) ++bf.t_offsets[bf.neighbor[k] + 1];
   for (std::size_t i = 0; i < n; ++i) bf.t_offsets[i + 1] += bf.t_offsets[i];
   bf.t_owner.resize(bf.num_bonds());
   bf.t_bond.resize(bf.num_bonds());

@@ -12,18 +12,16 @@ struct QuadratureSpec {
   double lattice_rotation = 0.0;  // radians; orientation of the (2D) cells for sub-cell sampling
 };
 
-// With `keep` and `rebuild`: rows of nodes not flagged in `rebuild` (and existing in `keep`) are
-// copied from `keep` as they are (bond states included), only flagged rows are searched again.
-BondFamilies build_families(const NodeSet& nodes, const QuadratureSpec& quadrature,
-                            const BondFamilies* keep = nullptr,
-                            const std::vector<char>* rebuild = nullptr);
+// The families of every active node, rows contiguous in node order.
+BondFamilies build_families(const NodeSet& nodes, const QuadratureSpec& quadrature);
 
-// The same into `out` (not `keep`), reusing its storage: refinement events build into a spare
-// set of arrays instead of fresh ones, whose first touch (page faults, zero fill) cost about as
-// much as the rebuild itself on large models.
-void build_families_into(BondFamilies& out, const NodeSet& nodes, const QuadratureSpec& quadrature,
-                         const BondFamilies* keep = nullptr,
-                         const std::vector<char>* rebuild = nullptr);
+// Searches again the rows of the flagged nodes (and gives nodes appended since the last build
+// empty rows first): each such row is written after the current arrays, whose old entries turn
+// into slack; the other rows are not touched, so the cost follows the flagged rows. When the
+// slack exceeds a quarter of the live bonds, the arrays are compacted once (rows in node order).
+// Bond indices change: nothing may hold one across the call. Transposes are cleared.
+void rebuild_rows(BondFamilies& bonds, const NodeSet& nodes, const QuadratureSpec& quadrature,
+                  const std::vector<char>& rows);
 
 // Builds the transpose of the families (t_offsets, t_owner, t_bond), sorted by owner.
 void build_transpose(BondFamilies& bonds);

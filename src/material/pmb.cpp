@@ -21,6 +21,7 @@ std::size_t forces_kernel(NodeSet& ns, BondFamilies& bf, bool allow_breaking,
   const double* yp = ns.cur.data();
   const std::uint8_t* flags = ns.flags.data();
   const std::uint64_t* off = bf.offsets.data();
+  const std::uint64_t* ends = bf.ends.data();
   const std::uint32_t* nbr = bf.neighbor.data();
   const double* inv_len = bf.inv_length.data();
   float* beta = bf.beta.data();
@@ -41,7 +42,7 @@ std::size_t forces_kernel(NodeSet& ns, BondFamilies& bf, bool allow_breaking,
     // A bond breaks when s > s0; s0 = +inf when this node cannot break bonds.
     const double s0 = (allow_breaking && !(flags[i] & kNoFail)) ? ns.critical_stretch[i] : INFINITY;
     const double delta = ns.horizon[i];
-    const std::uint64_t kb = off[i], ke = off[i + 1];
+    const std::uint64_t kb = off[i], ke = ends[i];
     double a0 = 0, a1 = 0, a2 = 0, w = 0;
     double smax = -INFINITY;
     // Fast pass: forces of intact bonds and the largest stretch; nothing is written per bond.
@@ -122,6 +123,7 @@ void energy_kernel(const NodeSet& ns, const BondFamilies& bf, double eth, std::v
   const double* yp = ns.cur.data();
   const std::uint8_t* flags = ns.flags.data();
   const std::uint64_t* off = bf.offsets.data();
+  const std::uint64_t* ends = bf.ends.data();
   const std::uint32_t* nbr = bf.neighbor.data();
   const double* inv_len = bf.inv_length.data();
   const float* beta = bf.beta.data();
@@ -137,7 +139,7 @@ void energy_kernel(const NodeSet& ns, const BondFamilies& bf, double eth, std::v
     const double delta = ns.horizon[i];
     double w = 0;
 #pragma omp simd reduction(+ : w)
-    for (std::uint64_t k = off[i]; k < off[i + 1]; ++k) {
+    for (std::uint64_t k = off[i]; k < ends[i]; ++k) {
       const std::size_t j = 4 * static_cast<std::size_t>(nbr[k]);
       const double d0 = yp[j] - yi0;
       const double d1 = D > 1 ? yp[j + 1] - yi1 : 0.0;

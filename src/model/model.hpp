@@ -57,9 +57,6 @@ struct MaterialLaw {
 struct Model {
   NodeSet nodes;
   BondFamilies bonds;
-  // Storage the next family rebuild (refinement, coarsening) writes into before swapping with
-  // `bonds`: events reuse memory instead of touching fresh pages. Empty until the first event.
-  BondFamilies spare_bonds;
   MaterialLaw material;
   bool damage_enabled = true;
   std::vector<BodyLoad> loads;

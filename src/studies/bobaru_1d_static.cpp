@@ -83,6 +83,7 @@ Model bar_model(const BarSpec& s, std::vector<double>& xs, std::vector<double>& 
     }
     bf.offsets[i + 1] = bf.neighbor.size();
   }
+  bf.close_contiguous();
   m.material.shape = s.shape;
   m.material.E = 1.0;
   m.damage_enabled = false;
