@@ -84,7 +84,7 @@ RefineStats coarsen_nodes(Model& m, const std::vector<std::uint32_t>& parents) {
       // later refinement of p starts a fresh generation.
       ns.parent[c] = -1;
       ns.flags[c] = static_cast<std::uint8_t>(ns.flags[c] & ~kActive);
-      for (int d = 0; d < 3; ++d) ns.v[d][c] = ns.a[d][c] = ns.f[d][c] = ns.b[d][c] = 0.0;
+      for (int d = 0; d < 3; ++d) ns.v[d][c] = ns.a[d][c] = ns.f[d][c] = 0.0;
     }
     ns.flags[p] |= kActive;
     ns.sync_current(p);

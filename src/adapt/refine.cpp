@@ -121,7 +121,7 @@ RefineStats refine_nodes(Model& m, std::vector<std::uint32_t> parents, const Ada
       ns.sync_current(q);
     }
     ns.flags[p] = static_cast<std::uint8_t>(ns.flags[p] & ~kActive);
-    for (int d = 0; d < 3; ++d) ns.v[d][p] = ns.a[d][p] = ns.f[d][p] = ns.b[d][p] = 0.0;
+    for (int d = 0; d < 3; ++d) ns.v[d][p] = ns.a[d][p] = ns.f[d][p] = 0.0;
     ++st.parents;
     st.children += offs.size();
   }

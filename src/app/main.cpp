@@ -75,10 +75,13 @@ int check(const std::string& path) {
   std::size_t nofail = 0;
   for (auto f : m.nodes.flags) nofail += (f & kNoFail) != 0;
   fmt::print("no-fail nodes   {}\n", nofail);
-  fmt::print("memory          {:.1f} MB bonds ({} B/bond), {:.1f} MB nodes ({} B/node)\n",
-             m.bonds.num_bonds() * BondFamilies::bytes_per_bond() / 1e6,
-             BondFamilies::bytes_per_bond(), m.nodes.size() * NodeSet::bytes_per_node() / 1e6,
-             NodeSet::bytes_per_node());
+  const std::size_t per_node = NodeSet::bytes_per_node() + m.bonds.row_index_bytes_per_node() +
+                               (m.loads.empty() ? 0 : 3 * 8);
+  fmt::print("memory          {:.1f} MB bonds ({} B/bond), {:.1f} MB nodes ({} B/node incl. row "
+             "index{})\n",
+             static_cast<double>(m.bonds.bond_array_bytes()) / 1e6, BondFamilies::bytes_per_bond(),
+             static_cast<double>(m.nodes.size() * per_node) / 1e6, per_node,
+             m.loads.empty() ? "" : " and body forces");
   if (dk.adapt.enabled) {
     const AdaptSpec& a = dk.adapt;
     std::string trig;

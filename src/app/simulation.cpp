@@ -273,13 +273,15 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
   {
     // Resident memory of the model arrays, per bond and per node, and the process peak (which
     // also holds the transient family-build buffers and output buffers).
-    const double nb = static_cast<double>(m.bonds.num_bonds());
+    // Per node: the node arrays, the bond-row index and, with loads, the solver's body forces.
     const double nn = static_cast<double>(ns.size());
+    const std::size_t per_node = NodeSet::bytes_per_node() + m.bonds.row_index_bytes_per_node() +
+                                 (m.loads.empty() ? 0 : 3 * 8);
     const double step_s = vv.step_count() > 0 ? solver_seconds / vv.step_count() : 0.0;
     j["memory"] = {{"bytes_per_bond", BondFamilies::bytes_per_bond()},
-                   {"bytes_per_node", NodeSet::bytes_per_node()},
-                   {"model_bytes", nb * BondFamilies::bytes_per_bond() +
-                                       nn * NodeSet::bytes_per_node()},
+                   {"bytes_per_node", per_node},
+                   {"model_bytes", static_cast<double>(m.bonds.bond_array_bytes()) +
+                                       nn * static_cast<double>(per_node)},
                    {"peak_rss_bytes", peak_rss_bytes()}};
     j["family_build_time_s"] = m.family_build_seconds;
     j["family_build_in_steps"] = step_s > 0 ? m.family_build_seconds / step_s : 0.0;

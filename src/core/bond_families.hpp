@@ -18,7 +18,9 @@ namespace periadapt {
 
 struct BondFamilies {
   std::vector<std::uint64_t> offsets{0};  // row begins, size n+1 (offsets[n]: end of the arrays)
-  std::vector<std::uint64_t> ends;        // row ends, size n
+  // Row ends, size n, once an event has moved a row; empty while rows are contiguous (row i
+  // then ends at offsets[i + 1]), so a run without refinement does not pay 8 B/node for it.
+  std::vector<std::uint64_t> ends;
   std::uint64_t live = 0;                 // bonds in rows (the arrays may hold unused slack)
   std::vector<std::uint32_t> neighbor;
   std::vector<double> inv_length;  // 1/|xi|, negative when the bond cannot break
@@ -33,13 +35,18 @@ struct BondFamilies {
   std::size_t num_nodes() const { return offsets.size() - 1; }
   std::size_t num_bonds() const { return live; }
   std::uint64_t begin(std::size_t i) const { return offsets[i]; }
-  std::uint64_t end(std::size_t i) const { return ends[i]; }
+  std::uint64_t end(std::size_t i) const { return ends.empty() ? offsets[i + 1] : ends[i]; }
+  // Row ends for the hot loops, without a branch per row.
+  const std::uint64_t* row_ends() const { return ends.empty() ? offsets.data() + 1 : ends.data(); }
   // After filling offsets as a contiguous prefix sum (row i ends where row i+1 begins).
   void close_contiguous() {
-    const std::size_t n = num_nodes();
-    ends.assign(offsets.begin() + 1, offsets.end());
-    live = n ? offsets[n] : 0;
+    ends.clear();
+    live = offsets.back();
   }
+  // Bytes of the row index arrays per node (for memory reports).
+  std::size_t row_index_bytes_per_node() const { return ends.empty() ? 8 : 16; }
+  // Bytes held per bond in the arrays, unused slack included (for memory reports).
+  std::size_t bond_array_bytes() const { return neighbor.size() * bytes_per_bond(); }
   static bool intact(float b) { return b > 0.0f; }
   double length(std::size_t k) const { return 1.0 / std::abs(inv_length[k]); }
   bool breakable(std::size_t k) const { return inv_length[k] > 0.0; }

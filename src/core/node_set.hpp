@@ -20,7 +20,7 @@ struct NodeSet {
   std::array<std::vector<double>, 3> v;  // velocity
   std::array<std::vector<double>, 3> a;  // acceleration
   std::array<std::vector<double>, 3> f;  // internal force density (N/m^3)
-  std::array<std::vector<double>, 3> b;  // external body-force density (N/m^3)
+  // (external body-force densities live with the solvers, only when a model has loads)
   // Current position y = x + u and volume packed per node [y0, y1, y2, V]: the bond loops
   // gather one cache line per neighbor instead of four.
   std::vector<double> cur;
@@ -46,7 +46,6 @@ struct NodeSet {
       v[d].push_back(0.0);
       a[d].push_back(0.0);
       f[d].push_back(0.0);
-      b[d].push_back(0.0);
     }
     cur.insert(cur.end(), {pos[0], pos[1], pos[2], vol});
     volume.push_back(vol);
@@ -78,7 +77,7 @@ struct NodeSet {
   }
 
   // Bytes held per node by the arrays above (for memory reports).
-  static constexpr std::size_t bytes_per_node() { return 6 * 3 * 8 + 4 * 8 + 9 * 8 + 2 + 4; }
+  static constexpr std::size_t bytes_per_node() { return 5 * 3 * 8 + 4 * 8 + 9 * 8 + 2 + 4; }
 };
 
 }  // namespace periadapt

@@ -124,6 +124,7 @@ void rebuild_rows(BondFamilies& fam, const NodeSet& nodes, const QuadratureSpec&
                   const std::vector<char>& rows) {
   const std::size_t n = nodes.size(), n_old = fam.num_nodes();
   const std::uint64_t tail = fam.neighbor.size();
+  if (fam.ends.empty()) fam.ends.assign(fam.offsets.begin() + 1, fam.offsets.end());
   // New nodes start with empty rows.
   fam.offsets.resize(n + 1, tail);
   fam.ends.resize(n, tail);

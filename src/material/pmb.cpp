@@ -21,7 +21,7 @@ std::size_t forces_kernel(NodeSet& ns, BondFamilies& bf, bool allow_breaking,
   const double* yp = ns.cur.data();
   const std::uint8_t* flags = ns.flags.data();
   const std::uint64_t* off = bf.offsets.data();
-  const std::uint64_t* ends = bf.ends.data();
+  const std::uint64_t* ends = bf.row_ends();
   const std::uint32_t* nbr = bf.neighbor.data();
   const double* inv_len = bf.inv_length.data();
   float* beta = bf.beta.data();
@@ -123,7 +123,7 @@ void energy_kernel(const NodeSet& ns, const BondFamilies& bf, double eth, std::v
   const double* yp = ns.cur.data();
   const std::uint8_t* flags = ns.flags.data();
   const std::uint64_t* off = bf.offsets.data();
-  const std::uint64_t* ends = bf.ends.data();
+  const std::uint64_t* ends = bf.row_ends();
   const std::uint32_t* nbr = bf.neighbor.data();
   const double* inv_len = bf.inv_length.data();
   const float* beta = bf.beta.data();

@@ -1,6 +1,7 @@
 #include "solver/dynamic_relaxation.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -42,20 +43,21 @@ bool run_dynamic_relaxation(Model& m, const RelaxationOptions& opt,
   for (std::size_t i = 0; i < n; ++i) lambda[i] = std::max(0.5 * D * K[i], 1e-300);
 
   std::vector<double> F_prev(3 * n, 0.0);
+  std::array<std::vector<double>, 3> body;  // body-force densities at this load step
   for (int step = 1; step <= opt.load_steps; ++step) {
     const double lf = static_cast<double>(step) / opt.load_steps;
     RelaxationStepReport rep;
     rep.load_step = step;
     rep.load_factor = lf;
-    for (int d = 0; d < 3; ++d) std::fill(ns.b[d].begin(), ns.b[d].end(), 0.0);
+    for (auto& b : body) b.assign(n, 0.0);
     double bnorm = 0;
     for (const BodyLoad& L : m.loads) {
       const double amp = L.amplitude(1e300) * lf;
       for (std::uint32_t i : L.nodes)
-        for (int d = 0; d < D; ++d) ns.b[d][i] += amp * L.density[static_cast<std::size_t>(d)];
+        for (int d = 0; d < D; ++d) body[static_cast<std::size_t>(d)][i] += amp * L.density[static_cast<std::size_t>(d)];
     }
     for (std::size_t i = 0; i < n; ++i)
-      for (int d = 0; d < D; ++d) bnorm += ns.b[d][i] * ns.b[d][i];
+      for (int d = 0; d < D; ++d) bnorm += body[static_cast<std::size_t>(d)][i] * body[static_cast<std::size_t>(d)][i];
     bnorm = std::sqrt(bnorm);
     for (const Fixed& f : fixed) ns.u[f.comp][f.node] = lf * f.value;
     for (;;) {  // relax, break, relax again until no bond breaks
@@ -72,7 +74,7 @@ bool run_dynamic_relaxation(Model& m, const RelaxationOptions& opt,
           if (!(ns.flags[i] & kActive)) continue;
           for (int d = 0; d < D; ++d) {
             if (is_fixed[3 * i + d]) continue;
-            const double F = ns.f[d][i] + ns.b[d][i];
+            const double F = ns.f[d][i] + body[static_cast<std::size_t>(d)][i];
             fn += F * F;
             const double v = ns.v[d][i];
             if (!first && v != 0.0) {
@@ -95,7 +97,7 @@ bool run_dynamic_relaxation(Model& m, const RelaxationOptions& opt,
           if (!(ns.flags[i] & kActive)) continue;
           for (int d = 0; d < D; ++d) {
             if (is_fixed[3 * i + d]) continue;
-            const double F = ns.f[d][i] + ns.b[d][i];
+            const double F = ns.f[d][i] + body[static_cast<std::size_t>(d)][i];
             double& v = ns.v[d][i];
             v = first ? 0.5 * F / lambda[i] : ((2.0 - c) * v + 2.0 * F / lambda[i]) / (2.0 + c);
             ns.u[d][i] += v;

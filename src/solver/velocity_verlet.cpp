@@ -27,12 +27,16 @@ VelocityVerlet::VelocityVerlet(Model& model, double dt) : m_(model), dt_(dt) {
 }
 
 void VelocityVerlet::apply_loads(double t) {
-  NodeSet& ns = m_.nodes;
-  for (int d = 0; d < 3; ++d) std::fill(ns.b[d].begin(), ns.b[d].end(), 0.0);
+  const NodeSet& ns = m_.nodes;
+  if (m_.loads.empty()) {
+    for (auto& b : body_) b.clear();
+    return;
+  }
+  for (auto& b : body_) b.assign(ns.size(), 0.0);
   for (const BodyLoad& L : m_.loads) {
     const double amp = L.amplitude(t);
     for (std::uint32_t i : L.nodes)
-      for (int d = 0; d < ns.dim; ++d) ns.b[d][i] += amp * L.density[d];
+      for (int d = 0; d < ns.dim; ++d) body_[d][i] += amp * L.density[d];
   }
 }
 
@@ -65,17 +69,19 @@ void VelocityVerlet::compute_accelerations() {
   bond_evals_ += static_cast<double>(m_.bonds.num_bonds());
   const std::size_t n = ns.size();
   const int dim = ns.dim;
+  const bool loaded = !body_[0].empty();
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     const double inv_rho = 1.0 / ns.density[i];
-    for (int d = 0; d < dim; ++d) ns.a[d][i] = (ns.f[d][i] + ns.b[d][i]) * inv_rho;
+    for (int d = 0; d < dim; ++d)
+      ns.a[d][i] = (ns.f[d][i] + (loaded ? body_[d][i] : 0.0)) * inv_rho;
   }
   // Constrained components follow their prescribed path: record the reaction density needed.
   for (std::size_t q = 0; q < fixed_dofs_.size(); ++q) {
     const std::size_t i = fixed_dofs_[q] / 3;
     const int d = static_cast<int>(fixed_dofs_[q] % 3);
     const double acc = step_ > 0 ? (ns.v[d][i] - v_prev_fixed_[q]) / dt_ : 0.0;
-    reaction_[q] = ns.density[i] * acc - ns.f[d][i] - ns.b[d][i];
+    reaction_[q] = ns.density[i] * acc - ns.f[d][i] - (loaded ? body_[d][i] : 0.0);
     ns.a[d][i] = 0.0;
   }
 }
@@ -85,7 +91,7 @@ double VelocityVerlet::external_power() const {
   double p = 0;
   for (const BodyLoad& L : m_.loads)
     for (std::uint32_t i : L.nodes)
-      for (int d = 0; d < ns.dim; ++d) p += ns.b[d][i] * ns.v[d][i] * ns.volume[i];
+      for (int d = 0; d < ns.dim; ++d) p += body_[d][i] * ns.v[d][i] * ns.volume[i];
   for (std::size_t q = 0; q < fixed_dofs_.size(); ++q) {
     const std::size_t i = fixed_dofs_[q] / 3;
     const int d = static_cast<int>(fixed_dofs_[q] % 3);

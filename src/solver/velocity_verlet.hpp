@@ -75,6 +75,9 @@ class VelocityVerlet {
   // Constrained degrees of freedom, flattened (node*3 + component), with reaction densities.
   std::vector<std::size_t> fixed_dofs_;
   std::vector<double> reaction_;
+  // Body-force densities of the loaded nodes' components (node*3 + d), from the loads at the
+  // current time; empty without loads, so load-free models do not carry 24 B/node for them.
+  std::array<std::vector<double>, 3> body_;
   std::vector<double> v_prev_fixed_;
 };
 
