@@ -2,7 +2,6 @@
 
 #include "adapt/crack_memory.hpp"
 #include "adapt/refine_common.hpp"
-#include "analysis/energy.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -10,7 +9,6 @@
 
 #include "core/cell_grid.hpp"
 #include "core/geometry.hpp"
-#include "core/visible_gradient.hpp"
 #include "discretize/surface_correction.hpp"
 #include "material/micromodulus.hpp"
 
@@ -53,14 +51,9 @@ RefineStats refine_nodes(Model& m, std::vector<std::uint32_t> parents, const Ada
   NodeSet& ns = m.nodes;
   BondFamilies& bf = m.bonds;
   const int D = ns.dim;
-  std::sort(parents.begin(), parents.end());
-  parents.erase(std::unique(parents.begin(), parents.end()), parents.end());
+  const std::vector<char> is_parent = begin_refinement(m, parents, st);
   if (parents.empty()) return st;
-  st.momentum_before = linear_momentum(ns);
-  st.kinetic_before = kinetic_energy(ns);
   const std::size_t n0 = ns.size();
-  std::vector<char> is_parent(n0, 0);
-  for (std::uint32_t p : parents) is_parent[p] = 1;
 
   const CrackMemory memory = remember_cracks(m, is_parent);
 
@@ -69,9 +62,7 @@ RefineStats refine_nodes(Model& m, std::vector<std::uint32_t> parents, const Ada
   const int nchild = 1 << D;
   for (std::uint32_t p : parents) {
     double G[3][3][3];  // field (u, v, a) -> component -> direction
-    fit_gradient(ns, bf, p, ns.u, G[0]);
-    fit_gradient(ns, bf, p, ns.v, G[1]);
-    fit_gradient(ns, bf, p, ns.a, G[2]);
+    fit_kinematic_gradients(ns, bf, p, G);
     const double h = ns.spacing[p];
     const int level = ns.level[p] + 1;
     // Sub-cell centres inside the body (a boundary cell of a node-on-edge grid keeps only its
@@ -86,10 +77,7 @@ RefineStats refine_nodes(Model& m, std::vector<std::uint32_t> parents, const Ada
         off[1] = sr * ox + cr * oy;
       }
       const Vec3 pos{ns.x[0][p] + off[0], ns.x[1][p] + off[1], ns.x[2][p] + off[2]};
-      bool inside = m.body.contains(pos, 1e-9 * h);
-      for (const Shape& hole : m.holes) inside = inside && !hole.contains(pos, 0.0);
-      if (m.body_clip) inside = inside && m.body_clip->contains(pos, 1e-9 * h);
-      if (inside) offs.push_back(off);
+      if (inside_body(m, pos, h)) offs.push_back(off);
     }
     if (offs.empty()) continue;  // cannot happen for a node inside the body; keep the parent
     // Children's mean offset: the interpolation is anchored there so that momentum is kept.

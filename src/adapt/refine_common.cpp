@@ -5,8 +5,34 @@
 
 #include "analysis/energy.hpp"
 #include "core/cell_grid.hpp"
+#include "core/visible_gradient.hpp"
 
 namespace periadapt {
+
+std::vector<char> begin_refinement(Model& m, std::vector<std::uint32_t>& parents, RefineStats& st) {
+  std::sort(parents.begin(), parents.end());
+  parents.erase(std::unique(parents.begin(), parents.end()), parents.end());
+  if (parents.empty()) return {};
+  st.momentum_before = linear_momentum(m.nodes);
+  st.kinetic_before = kinetic_energy(m.nodes);
+  std::vector<char> is_parent(m.nodes.size(), 0);
+  for (std::uint32_t p : parents) is_parent[p] = 1;
+  return is_parent;
+}
+
+bool inside_body(const Model& m, const Vec3& pos, double h) {
+  if (!m.body.contains(pos, 1e-9 * h)) return false;
+  for (const Shape& hole : m.holes)
+    if (hole.contains(pos, 0.0)) return false;
+  return !m.body_clip || m.body_clip->contains(pos, 1e-9 * h);
+}
+
+void fit_kinematic_gradients(const NodeSet& ns, const BondFamilies& bf, std::uint32_t p,
+                             double G[3][3][3]) {
+  fit_gradient(ns, bf, p, ns.u, G[0]);
+  fit_gradient(ns, bf, p, ns.v, G[1]);
+  fit_gradient(ns, bf, p, ns.a, G[2]);
+}
 
 void inherit_loads_and_motions(Model& m, std::size_t n0, const std::vector<char>& is_parent,
                                bool parents_survive) {

@@ -12,6 +12,17 @@
 
 namespace periadapt {
 
+// The opening of an event: parents sorted and unique, momentum and kinetic energy before, and
+// the parent flags over the current nodes (empty when there is nothing to refine).
+std::vector<char> begin_refinement(Model& m, std::vector<std::uint32_t>& parents, RefineStats& st);
+
+// A new node may go at `pos` (spacing h): inside the body box and a disk body, outside holes.
+bool inside_body(const Model& m, const Vec3& pos, double h);
+
+// Gradients of u, v and a at node p over its visible family: G[field][component][direction].
+void fit_kinematic_gradients(const NodeSet& ns, const BondFamilies& bf, std::uint32_t p,
+                             double G[3][3][3]);
+
 // Initial refinement: nodes created from a loaded or constrained parent (ns.parent, ids >= n0)
 // join its loads and, when inside the motion's region, its prescribed motions. A refined parent
 // stays in the lists only when it survives (method A).

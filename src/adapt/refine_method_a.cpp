@@ -13,7 +13,6 @@
 #include "adapt/refine_common.hpp"
 #include "analysis/energy.hpp"
 #include "core/cell_grid.hpp"
-#include "core/visible_gradient.hpp"
 
 namespace periadapt {
 
@@ -34,14 +33,9 @@ RefineStats refine_nodes_method_a(Model& m, std::vector<std::uint32_t> parents,
   NodeSet& ns = m.nodes;
   BondFamilies& bf = m.bonds;
   const int D = ns.dim;
-  std::sort(parents.begin(), parents.end());
-  parents.erase(std::unique(parents.begin(), parents.end()), parents.end());
+  const std::vector<char> is_parent = begin_refinement(m, parents, st);
   if (parents.empty()) return st;
-  st.momentum_before = linear_momentum(ns);
-  st.kinetic_before = kinetic_energy(ns);
   const std::size_t n0 = ns.size();
-  std::vector<char> is_parent(n0, 0);
-  for (std::uint32_t p : parents) is_parent[p] = 1;
   const CrackMemory memory = remember_cracks(m, std::vector<char>(n0, 0), &is_parent);
 
   const double cr = std::cos(m.lattice_rotation), sr = std::sin(m.lattice_rotation);
@@ -58,9 +52,7 @@ RefineStats refine_nodes_method_a(Model& m, std::vector<std::uint32_t> parents,
   for (int d = 0; d < D; ++d) counts[d] = 3;
   for (std::uint32_t p : parents) {
     double G[3][3][3];  // field (u, v, a) -> component -> direction
-    fit_gradient(ns, bf, p, ns.u, G[0]);
-    fit_gradient(ns, bf, p, ns.v, G[1]);
-    fit_gradient(ns, bf, p, ns.a, G[2]);
+    fit_kinematic_gradients(ns, bf, p, G);
     const double h = ns.spacing[p];
     for (int k = 0; k < counts[2]; ++k)
       for (int j = 0; j < counts[1]; ++j)
@@ -74,10 +66,7 @@ RefineStats refine_nodes_method_a(Model& m, std::vector<std::uint32_t> parents,
             off[1] = sr * ox + cr * oy;
           }
           const Vec3 pos{ns.x[0][p] + off[0], ns.x[1][p] + off[1], ns.x[2][p] + off[2]};
-          bool inside = m.body.contains(pos, 1e-9 * h);
-          for (const Shape& hole : m.holes) inside = inside && !hole.contains(pos, 0.0);
-          if (m.body_clip) inside = inside && m.body_clip->contains(pos, 1e-9 * h);
-          if (!inside) continue;
+          if (!inside_body(m, pos, h)) continue;
           bool taken = false;
           existing.for_each_within(pos, same, [&](std::uint32_t q, double) {
             taken = taken || (ns.flags[q] & kActive);
