@@ -26,6 +26,8 @@ num() {  # summary key -> value (first match), "-" when null or absent
   v=$(grep -m1 "\"$2\"" "$out/$1/summary.json" | sed -E 's/.*: *//; s/,$//')
   [[ -z "$v" || "$v" == null ]] && echo "-" || echo "$v"
 }
+# Markdown images of a run's damage pictures.
+pictures() { for p in "$out/$1"/damage_*.png; do echo "![$(basename "$p")]($1/$(basename "$p"))"; done; }
 us() { [[ "$1" == "-" ]] && echo "-" || awk -v t="$1" 'BEGIN { printf "%.2f", t * 1e6 }'; }
 mm() { [[ "$1" == "-" ]] && echo "-" || awk -v t="$1" 'BEGIN { printf "%.1f", t * 1e3 }'; }
 f0() { [[ "$1" == "-" ]] && echo "-" || awk -v t="$1" 'BEGIN { printf "%.0f", t }'; }
@@ -52,7 +54,7 @@ row() {  # name label published...
   for n in branching_L0 branching_L1 branching_adaptive; do
     echo "### $n"
     echo
-    for p in "$out/$n"/damage_*.png; do echo "![$(basename "$p")]($n/$(basename "$p"))"; done
+    pictures "$n"
     echo
     echo "Tip speed: [$n/crack_speed.csv]($n/crack_speed.csv) ![speed]($n/crack_speed.png)"
     echo
@@ -63,7 +65,7 @@ row() {  # name label published...
   echo "|---|---|---|---|---|---|"
   echo "| $(num kalthoff_winkler final) | $(us "$(num kalthoff_winkler initiation_time_s)") | $(f2 "$(num kalthoff_winkler path_angle_deg)") | $(f0 "$(num kalthoff_winkler max_speed_m_s)") | $(f2 "$(num kalthoff_winkler wall_time_s)") | 5,000 + 4,453 nodes, t_i about 24 us, 68 deg, 1,981 m/s |"
   echo
-  for p in "$out/kalthoff_winkler"/damage_*.png; do echo "![$(basename "$p")](kalthoff_winkler/$(basename "$p"))"; done
+  pictures kalthoff_winkler
   echo
   echo "## Crack branching 3D, Duran 50 glass (thesis 6.1, Fig. 6.5, level 1)"
   echo
@@ -71,7 +73,7 @@ row() {  # name label published...
   echo "|---|---|---|---|---|---|"
   echo "| $(num branching_3d initial) -> $(num branching_3d final) | $(us "$(num branching_3d initiation_time_s)") | $(us "$(num branching_3d branching_time_s)") | $(f0 "$(num branching_3d mean_speed_m_s)") | $(f2 "$(num branching_3d wall_time_s)") | 12,000 -> 26,644 nodes, branches (qualitative) |"
   echo
-  for p in "$out/branching_3d"/damage_*.png; do echo "![$(basename "$p")](branching_3d/$(basename "$p"))"; done
+  pictures branching_3d
   echo
   echo "Published numbers: Dipasquale, PhD thesis (2016), Tables 6.2-6.5; see docs and the closing notes for the known differences."
 } > "$out/README.md"
