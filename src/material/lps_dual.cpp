@@ -66,26 +66,20 @@ std::size_t lps_dual_forces(NodeSet& ns, BondFamilies& bf, InfluenceShape shape,
   for (std::size_t i = 0; i < n; ++i) {
     if (!(ns.flags[i] & kActive)) continue;
     double a[3] = {0, 0, 0};
-    for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {
-      if (!BondFamilies::intact(bf.beta[k])) continue;
-      const std::size_t j = bf.neighbor[k];
+    // Membership k of `owner`'s family between i and `other`: the owner's force state times the
+    // other end's volume, along i -> other (for i's own bonds owner = i; for its dual horizon,
+    // the reaction of o's membership, owner = other = o).
+    auto add = [&](std::size_t owner, std::size_t other, std::uint64_t k) {
+      if (!BondFamilies::intact(bf.beta[k])) return;
       const double x = bf.length(k);
       double d[3];
-      const double e = bond_extension(ns, i, j, x, d);
-      const double fr = t_state(i, x, e) * static_cast<double>(bf.beta[k]) * ns.volume[j] / (x + e);
-      for (int q = 0; q < ns.dim; ++q) a[q] += fr * d[q];
-    }
-    for (std::uint64_t q = bf.t_offsets[i]; q < bf.t_offsets[i + 1]; ++q) {
-      const std::uint64_t k = bf.t_bond[q];
-      if (!BondFamilies::intact(bf.beta[k])) continue;
-      const std::size_t o = bf.t_owner[q];
-      const double x = bf.length(k);
-      double d[3];
-      const double e = bond_extension(ns, i, o, x, d);
-      // Reaction of o's membership on i: its force state times o's volume (per unit volume of i).
-      const double fr = t_state(o, x, e) * static_cast<double>(bf.beta[k]) * ns.volume[o] / (x + e);
+      const double e = bond_extension(ns, i, other, x, d);
+      const double fr = t_state(owner, x, e) * static_cast<double>(bf.beta[k]) * ns.volume[other] / (x + e);
       for (int p = 0; p < ns.dim; ++p) a[p] += fr * d[p];
-    }
+    };
+    for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) add(i, bf.neighbor[k], k);
+    for (std::uint64_t q = bf.t_offsets[i]; q < bf.t_offsets[i + 1]; ++q)
+      add(bf.t_owner[q], bf.t_owner[q], bf.t_bond[q]);
     for (int p = 0; p < ns.dim; ++p) ns.f[p][i] = a[p];
   }
   return newly.size();
