@@ -43,6 +43,14 @@ std::string cracked_plate_deck(double traction, const std::string& adapt, int st
          "solver: {time_step: 5.0e-8, steps: " + std::to_string(steps) + "}\n";
 }
 
+// A smooth, non-uniform velocity field, so that interpolation has gradients to carry.
+void set_smooth_velocity(NodeSet& ns) {
+  for (std::size_t i = 0; i < ns.size(); ++i) {
+    ns.v[0][i] = 3.0 + std::sin(150.0 * ns.x[0][i]) * std::cos(90.0 * ns.x[1][i]);
+    ns.v[1][i] = -2.0 + 40.0 * ns.x[0][i] * ns.x[1][i];
+  }
+}
+
 std::vector<std::uint32_t> all_active(const Model& m) {
   std::vector<std::uint32_t> ids;
   for (std::uint32_t i = 0; i < m.nodes.size(); ++i)
@@ -55,10 +63,7 @@ std::vector<std::uint32_t> all_active(const Model& m) {
 TEST(Adapt, RefinementConservesLinearMomentum) {
   Model m = build_model(test::deck_from(kPlate));
   NodeSet& ns = m.nodes;
-  for (std::size_t i = 0; i < ns.size(); ++i) {  // a smooth, non-uniform velocity field
-    ns.v[0][i] = 3.0 + std::sin(150.0 * ns.x[0][i]) * std::cos(90.0 * ns.x[1][i]);
-    ns.v[1][i] = -2.0 + 40.0 * ns.x[0][i] * ns.x[1][i];
-  }
+  set_smooth_velocity(ns);
   AdaptSpec spec;
   spec.enabled = true;
   std::vector<std::uint32_t> parents;
@@ -84,10 +89,7 @@ TEST(Adapt, MethodAKeepsVolumeAndMomentumAndCutsInterfaceCellsByEq34) {
   // Eq. 3.4), V_c - V_f / 4 for a corner-diagonal one (j = 1), with V_f = V_c / 4.
   Model m = build_model(test::deck_from(kPlate));
   NodeSet& ns = m.nodes;
-  for (std::size_t i = 0; i < ns.size(); ++i) {  // a smooth, non-uniform velocity field
-    ns.v[0][i] = 3.0 + std::sin(150.0 * ns.x[0][i]) * std::cos(90.0 * ns.x[1][i]);
-    ns.v[1][i] = -2.0 + 40.0 * ns.x[0][i] * ns.x[1][i];
-  }
+  set_smooth_velocity(ns);
   auto total_volume = [&] {
     double v = 0;
     for (std::size_t i = 0; i < ns.size(); ++i)
