@@ -67,8 +67,10 @@ void Adaptor::restore_energy(double h_before, const std::vector<std::uint32_t>& 
   }
 }
 
-std::vector<std::uint32_t> Adaptor::parents_for(const std::vector<std::uint32_t>& ids) const {
+std::vector<std::uint32_t> Adaptor::parents_for(const std::vector<std::uint32_t>& ids,
+                                                const std::vector<char>* refinable) const {
   if (ids.empty()) return {};
+  if (refinable) return apply_visibility(m_, ids, *refinable, spec_.visibility_factor);
   return apply_visibility(m_, ids, refinable_nodes(m_, spec_), spec_.visibility_factor);
 }
 
@@ -98,8 +100,7 @@ void Adaptor::refine(const std::vector<std::uint32_t>& parents, std::size_t iden
   vv_.refresh();
 }
 
-void Adaptor::coarsen_quiet(const std::vector<double>& E, double alpha,
-                            const std::vector<std::uint32_t>& flagged) {
+bool Adaptor::coarsen_quiet(const std::vector<double>& E, double alpha) {
   const NodeSet& ns = m_.nodes;
   double emax = 0;
   for (std::size_t i = 0; i < ns.size(); ++i)
@@ -107,7 +108,6 @@ void Adaptor::coarsen_quiet(const std::vector<double>& E, double alpha,
   // Parents whose children are all quiet and that, back on the grid, would not see a hot node:
   // no hot node within visibility_factor max(delta_parent, delta_hot) of the parent (the
   // refinement rule run backwards), so a refined zone is not coarsened under a passing wave.
-  (void)flagged;
   std::vector<char> hot(ns.size(), 0);
   double dhot = 0;
   for (std::size_t i = 0; i < ns.size(); ++i)
@@ -118,7 +118,7 @@ void Adaptor::coarsen_quiet(const std::vector<double>& E, double alpha,
       busy[static_cast<std::size_t>(ns.parent[c])] = 1;
   std::vector<std::uint32_t> quiet;
   const std::vector<std::uint32_t> candidates = coarsenable_parents(m_);
-  if (candidates.empty()) return;
+  if (candidates.empty()) return false;
   double dpar = 0;
   for (std::uint32_t p : candidates) dpar = std::max(dpar, ns.horizon[p]);
   const double f = spec_.visibility_factor;
@@ -134,7 +134,7 @@ void Adaptor::coarsen_quiet(const std::vector<double>& E, double alpha,
                          });
     if (!near) quiet.push_back(p);
   }
-  if (quiet.empty()) return;
+  if (quiet.empty()) return false;
   RefinementEvent ev;
   ev.step = vv_.step_count();
   ev.time = vv_.time();
@@ -150,6 +150,7 @@ void Adaptor::coarsen_quiet(const std::vector<double>& E, double alpha,
   ev.dt_stable = stable_time_step(m_, ev.stats.rebuilt).dt;
   events_.push_back(ev);
   vv_.refresh();
+  return true;
 }
 
 bool Adaptor::step() {
@@ -170,7 +171,7 @@ bool Adaptor::step() {
       bool coarse = false;
       for (std::uint32_t i : ids) coarse = coarse || refinable[i];
       if (coarse && pass <= spec_.max_level) {
-        const auto parents = parents_for(ids);
+        const auto parents = parents_for(ids, &refinable);
         if (!parents.empty()) {
           vv_.undo_last_step();
           refine(parents, ids.size(), "damage");
@@ -182,7 +183,7 @@ bool Adaptor::step() {
       // Batched every check_every steps: if the crack reaches a coarse node first, the branch
       // above refines it with the step redone.
       if (!ids.empty() && vv_.step_count() % spec_.check_every == 0)
-        refine(parents_for(ids), ids.size(), "damage");
+        refine(parents_for(ids, &refinable), ids.size(), "damage");
       break;
     }
   } else if (!vv_.step()) {
@@ -198,9 +199,11 @@ bool Adaptor::step() {
         E[i] += 0.5 * ns.density[i] * v2;
       }
     const double alpha = *spec_.energy_fraction;
-    const auto ids = energy_trigger(m_, E, alpha, refinable_nodes(m_, spec_));
-    if (spec_.coarsen) coarsen_quiet(E, alpha, ids);
-    refine(parents_for(ids), ids.size(), "energy");
+    const std::vector<char> refinable = refinable_nodes(m_, spec_);
+    const auto ids = energy_trigger(m_, E, alpha, refinable);
+    // Coarsening changes which nodes are active: then the flags are taken afresh.
+    const bool coarsened = spec_.coarsen && coarsen_quiet(E, alpha);
+    refine(parents_for(ids, coarsened ? nullptr : &refinable), ids.size(), "energy");
   }
   return true;
 }

@@ -41,14 +41,16 @@ class Adaptor {
 
  private:
   // Parents the identified nodes ask for (visibility applied); empty: nothing to refine.
-  std::vector<std::uint32_t> parents_for(const std::vector<std::uint32_t>& ids) const;
+  // `refinable`: the flags of the current node set when the caller has them already.
+  std::vector<std::uint32_t> parents_for(const std::vector<std::uint32_t>& ids,
+                                         const std::vector<char>* refinable = nullptr) const;
   // adapt.conserve_energy: total energy, and the velocity rescaling of the rebuilt rows that
   // gives back what an event changed.
   double total_energy();
   void restore_energy(double h_before, const std::vector<std::uint32_t>& rows);
   void refine(const std::vector<std::uint32_t>& parents, std::size_t identified, const char* trigger);
-  void coarsen_quiet(const std::vector<double>& E, double alpha,
-                     const std::vector<std::uint32_t>& flagged);
+  // Returns whether any parent was restored.
+  bool coarsen_quiet(const std::vector<double>& E, double alpha);
   Model& m_;
   VelocityVerlet& vv_;
   AdaptSpec spec_;
