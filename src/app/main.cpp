@@ -75,8 +75,7 @@ int check(const std::string& path) {
   std::size_t nofail = 0;
   for (auto f : m.nodes.flags) nofail += (f & kNoFail) != 0;
   fmt::print("no-fail nodes   {}\n", nofail);
-  const std::size_t per_node = NodeSet::bytes_per_node() + m.bonds.row_index_bytes_per_node() +
-                               (m.loads.empty() ? 0 : 3 * 8);
+  const std::size_t per_node = model_bytes_per_node(m);
   fmt::print("memory          {:.1f} MB bonds ({} B/bond), {:.1f} MB nodes ({} B/node incl. row "
              "index{})\n",
              static_cast<double>(m.bonds.bond_array_bytes()) / 1e6, BondFamilies::bytes_per_bond(),

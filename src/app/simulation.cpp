@@ -273,10 +273,8 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
   {
     // Resident memory of the model arrays, per bond and per node, and the process peak (which
     // also holds the transient family-build buffers and output buffers).
-    // Per node: the node arrays, the bond-row index and, with loads, the solver's body forces.
     const double nn = static_cast<double>(ns.size());
-    const std::size_t per_node = NodeSet::bytes_per_node() + m.bonds.row_index_bytes_per_node() +
-                                 (m.loads.empty() ? 0 : 3 * 8);
+    const std::size_t per_node = model_bytes_per_node(m);
     const double step_s = vv.step_count() > 0 ? solver_seconds / vv.step_count() : 0.0;
     j["memory"] = {{"bytes_per_bond", BondFamilies::bytes_per_bond()},
                    {"bytes_per_node", per_node},

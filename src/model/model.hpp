@@ -78,4 +78,11 @@ struct Model {
   mutable LpsScratch lps_scratch;  // per-node weighted volume and dilatation (LPS)
 };
 
+// Bytes per node for memory reports: the node arrays, the bond-row index and, with loads, the
+// solver's body-force densities.
+inline std::size_t model_bytes_per_node(const Model& m) {
+  return NodeSet::bytes_per_node() + m.bonds.row_index_bytes_per_node() +
+         (m.loads.empty() ? 0 : 3 * sizeof(double));
+}
+
 }  // namespace periadapt
