@@ -81,7 +81,7 @@ std::vector<std::uint32_t> rebuild_families(Model& m, const CrackMemory& mem,
   const int D = ns.dim;
   // The window: changed nodes and every active node whose search radius reaches one of them.
   std::vector<char> rebuild(ns.size(), 0);
-  bool global = m.surface_correction || std::getenv("PERIADAPT_GLOBAL_REBUILD") != nullptr;
+  bool global = m.surface_correction != SurfaceCorrection::None || std::getenv("PERIADAPT_GLOBAL_REBUILD") != nullptr;
   if (!global) {
     double rmax = 0;
     std::vector<std::uint32_t> ch;
@@ -119,9 +119,9 @@ std::vector<std::uint32_t> rebuild_families(Model& m, const CrackMemory& mem,
   else
     rebuild_rows(bf, ns, m.quadrature, rebuild);
   if (global) std::fill(rebuild.begin(), rebuild.end(), 1);
-  if (m.surface_correction)
-    apply_surface_correction(ns, bf, m.material.shape,
-                             p_wave_modulus(D, m.material.plane, m.material.E, m.material.nu));
+  apply_surface_correction(ns, bf, m.material.shape,
+                           p_wave_modulus(D, m.material.plane, m.material.E, m.material.nu),
+                           m.surface_correction);
   apply_precracks(ns, bf, m.cracks);
   CellGrid* fgrid = nullptr;
   std::vector<double> fx[3];

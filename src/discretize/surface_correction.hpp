@@ -1,20 +1,36 @@
 #pragma once
-// Surface correction by the energy method (Madenci & Oterkus 2014, used in thesis 4.1): for every
-// node and axis d, the peridynamic strain-energy density under a uniaxial strain along d is
-// compared with the classical one, g_d(i) = W_classical / W_pd(i); a bond takes the mean of its
-// two ends per axis and combines the axes along its direction n as
-//   G_ij = ( sum_d (n_d / gbar_d)^2 )^(-1/2),   gbar_d = (g_d(i) + g_d(j)) / 2,
-// which multiplies the bond's quadrature factor. Away from surfaces it also absorbs the
-// quadrature's own energy error (e.g. the PA-PDLAMMPS deficit).
+// Surface correction: per-bond factors that give nodes near free surfaces (and, on coarse
+// lattices, every node) the bulk continuum strain-energy density. They multiply the bond's
+// quadrature factor. Two methods:
+//
+// Energy (Madenci & Oterkus 2014, used in thesis 4.1): for every node and axis d, the
+// peridynamic strain-energy density under a uniaxial strain along d is compared with the
+// classical one, g_d(i) = W_classical / W_pd(i); a bond takes the mean of its two ends per axis
+// and combines the axes along its direction n as
+//   G_ij = ( sum_d (n_d / gbar_d)^2 )^(-1/2),   gbar_d = (g_d(i) + g_d(j)) / 2.
+// It fixes the axial stiffnesses only: the coupling between axes (what sets the Poisson
+// contraction) stays as the truncated family or the lattice leaves it.
+//
+// Moments: the bond factors are made such that every node's fourth-order bond moments
+// sum_j w n_a n_a n_b n_b equal the isotropic bulk ones. The strain-energy density of a
+// homogeneous strain is a quadratic form with exactly these moments as coefficients (for families
+// symmetric about the axes), so the node then has the classical energy for every homogeneous
+// strain, shear and biaxial alike, not only the axial ones. Each sweep fits every node's own
+// direction multiplier G_i(n) = sum_d a_d n_d^2 + sum_{d<e} b_de n_d^2 n_e^2 (bulk: G = 1) to its
+// current moments and multiplies each bond by (G_i(n) G_j(n))^(omega/2), until no bond changes.
 #include "core/bond_families.hpp"
 #include "core/node_set.hpp"
 #include "material/micromodulus.hpp"
 
 namespace periadapt {
 
+enum class SurfaceCorrection { None, Energy, Moments };
+
 // `uniaxial_modulus`: the classical modulus M with W = M eps^2 / 2 under uniaxial strain
-// (P-wave modulus of the dimension and plane condition).
+// (P-wave modulus of the dimension and plane condition). 1D models use the energy method (both
+// methods coincide there).
 void apply_surface_correction(const NodeSet& nodes, BondFamilies& bonds, InfluenceShape shape,
-                              double uniaxial_modulus);
+                              double uniaxial_modulus,
+                              SurfaceCorrection method = SurfaceCorrection::Energy);
 
 }  // namespace periadapt

@@ -242,7 +242,12 @@ Deck parse_deck(const std::string& text, const std::string& name) {
     if (q == "ipa_hybrid" && dk.dim != 2)
       s.fail("quadrature", "ipa_hybrid is a 2D rule; use subcell (accurate covered volumes) in " +
                                std::to_string(dk.dim) + "D");
-    dk.surface_correction = s.boolean("surface_correction", false);
+    // true keeps its old meaning (the energy method); moments also fixes the axis coupling.
+    const std::string sc =
+        s.choice("surface_correction", {"false", "true", "energy", "moments"}, "false");
+    dk.surface_correction = sc == "moments"                   ? SurfaceCorrection::Moments
+                            : sc == "true" || sc == "energy" ? SurfaceCorrection::Energy
+                                                              : SurfaceCorrection::None;
     dk.quadrature = q == "full"         ? Quadrature::Full
                     : q == "subcell"    ? Quadrature::Subcell
                     : q == "ipa_hybrid" ? Quadrature::IpaHybrid

@@ -11,6 +11,7 @@
 #include "discretize/grid.hpp"
 #include "discretize/partial_volume.hpp"
 #include "discretize/precrack.hpp"
+#include "discretize/surface_correction.hpp"
 #include "material/micromodulus.hpp"
 #include "model/time_function.hpp"
 
@@ -67,7 +68,7 @@ struct Deck {
   double horizon_factor = 3.0;  // m = delta / dx
   double horizon = 0.0;         // delta
   Quadrature quadrature = Quadrature::PaPdlammps;
-  bool surface_correction = false;
+  SurfaceCorrection surface_correction = SurfaceCorrection::None;
   // cracks, loads, boundary conditions, initial fields
   std::vector<PreCrack> cracks;
   std::vector<LoadSpec> loads;

@@ -87,8 +87,8 @@ Model build_model(const Deck& dk) {
   m.family_build_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   m.surface_correction = dk.surface_correction;
-  if (m.surface_correction)
-    apply_surface_correction(ns, m.bonds, dk.shape, p_wave_modulus(dk.dim, dk.plane, dk.E, mat.nu));
+  apply_surface_correction(ns, m.bonds, dk.shape, p_wave_modulus(dk.dim, dk.plane, dk.E, mat.nu),
+                           m.surface_correction);
   m.precrack_bonds = apply_precracks(ns, m.bonds, dk.cracks);
   update_damage_weights(ns, m.bonds);
   m.quadrature = qs;

@@ -13,6 +13,7 @@
 #include "core/node_set.hpp"
 #include "discretize/families.hpp"
 #include "discretize/precrack.hpp"
+#include "discretize/surface_correction.hpp"
 #include "material/lps.hpp"
 #include "material/micromodulus.hpp"
 #include "overlay/pdro.hpp"
@@ -72,7 +73,7 @@ struct Model {
   Box body;                       // the body box; refinement creates no node outside it
   std::vector<Shape> holes;       // ... nor inside a hole
   std::optional<Shape> body_clip; // ... nor outside a non-box body (disk)
-  bool surface_correction = false;
+  SurfaceCorrection surface_correction = SurfaceCorrection::None;
   bool dual_horizon = false;  // explicit PMB in the dual-horizon form (bonds.t_* maintained)
   PdroSpec pdro;              // refinement overlay for bond failure (PMB)
   mutable LpsScratch lps_scratch;  // per-node weighted volume and dilatation (LPS)

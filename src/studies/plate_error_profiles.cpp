@@ -21,7 +21,7 @@ double PlateErrors::max_ex(double lo, double hi) const {
   return m;
 }
 
-std::string tension_plate_deck(bool surface_correction, const std::string& bond_pairing,
+std::string tension_plate_deck(const std::string& surface_correction, const std::string& bond_pairing,
                                int refined_level) {
   std::string d = R"(
 model: {dimension: 2, plane: stress, thickness: 0.01}
@@ -31,7 +31,7 @@ discretization:
   horizon: 0.03015
   registration: node_on_edge
   quadrature: ipa_hybrid
-  surface_correction: )" + std::string(surface_correction ? "true" : "false") + R"(
+  surface_correction: )" + surface_correction + R"(
   body: {box: {min: [-0.5, -0.25], max: [0.5, 0.25]}}
 loads:
   - {name: right, type: traction, region: {box: {min: [0.5, -0.25], max: [0.5, 0.25]}}, value: [200.0e6, 0]}

@@ -24,7 +24,8 @@ PlateErrors plate_errors(const NodeSet& nodes, double p, double E, double nu);
 // The deck of thesis 4.1 (Fig. 4.1): 1 m x 0.5 m x 0.01 m, 200 MPa on both short edges,
 // E = 200 GPa, nu = 1/3 plane stress, dX = 10 mm, delta = 30.15 mm, node-on-edge grid with the
 // symmetry-axis constraints, IPA-Hybrid areas; `refined_level` > 0 refines x < 0 to that level.
-std::string tension_plate_deck(bool surface_correction, const std::string& bond_pairing,
+// `surface_correction`: the deck value (false | energy | moments).
+std::string tension_plate_deck(const std::string& surface_correction, const std::string& bond_pairing,
                                int refined_level);
 
 }  // namespace periadapt

@@ -19,15 +19,16 @@ namespace {
 struct Variant {
   const char* name;
   const char* pairing;
-  bool correction;
+  const char* correction;  // deck value of discretization.surface_correction
 };
 
 }  // namespace
 
 int run_static_plate_refined_study(const std::string& out_dir) {
-  const Variant variants[3] = {{"scaling", "source_horizon", false},
-                               {"scaling + DH", "dual_horizon", false},
-                               {"scaling + DH + surface correction", "dual_horizon", true}};
+  const Variant variants[4] = {{"scaling", "source_horizon", "false"},
+                               {"scaling + DH", "dual_horizon", "false"},
+                               {"scaling + DH + surface correction", "dual_horizon", "energy"},
+                               {"scaling + DH + moment correction", "dual_horizon", "moments"}};
   std::ofstream csv;
   if (!out_dir.empty()) {
     std::filesystem::create_directories(out_dir);

@@ -1,0 +1,153 @@
+// Surface correction (issue 3): a node near a free surface must have the classical strain-energy
+// density. The energy method (Madenci & Oterkus) fixes the two axial uniaxial strains only; the
+// moment-matching method fixes every homogeneous strain, shear included, for nodes whose families
+// are symmetric about the axes. Strain energies are computed with the PMB energy density
+// (thesis Eq. 2.14) under u = eps . x and compared with W = eps : C : eps / 2 of the isotropic
+// material with the bond-based Poisson ratio.
+#include <fmt/core.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "material/pmb.hpp"
+#include "studies/plate_error_profiles.hpp"
+#include "app/static_run.hpp"
+#include "test_helpers.hpp"
+
+using namespace periadapt;
+
+namespace {
+
+using Strain = std::array<std::array<double, 3>, 3>;
+
+double classical_energy(int dim, PlaneCondition plane, double E, const Strain& e) {
+  const double nu = bond_based_poisson(dim, plane);
+  // Plane stress acts as 2D with lambda* = 2 lambda mu / (lambda + 2 mu).
+  double lambda = E * nu / ((1 + nu) * (1 - 2 * nu));
+  const double mu = E / (2 * (1 + nu));
+  if (dim == 2 && plane == PlaneCondition::Stress) lambda = 2 * lambda * mu / (lambda + 2 * mu);
+  double tr = 0, ee = 0;
+  for (int a = 0; a < dim; ++a) {
+    tr += e[a][a];
+    for (int b = 0; b < dim; ++b) ee += e[a][b] * e[a][b];
+  }
+  return 0.5 * lambda * tr * tr + mu * ee;
+}
+
+std::vector<Strain> strain_states(int dim) {
+  const double s = 1e-4;
+  std::vector<Strain> out;
+  for (int a = 0; a < dim; ++a) {  // uniaxial along each axis
+    Strain e{};
+    e[a][a] = s;
+    out.push_back(e);
+  }
+  for (int a = 0; a < dim; ++a)  // simple shear in every plane
+    for (int b = a + 1; b < dim; ++b) {
+      Strain e{};
+      e[a][b] = e[b][a] = 0.5 * s;
+      out.push_back(e);
+    }
+  Strain iso{};  // isotropic expansion
+  for (int a = 0; a < dim; ++a) iso[a][a] = s;
+  out.push_back(iso);
+  return out;
+}
+
+struct Worst {
+  double axial = 0, other = 0;  // worst |W/W_classical - 1| over axial / shear+isotropic states
+};
+
+// A plate (2D, IPA-Hybrid) or block (3D, sub-cell volumes) with `cells` cells a side; the probed
+// nodes lie on the mid-line of one face at depths 0 .. 4 cells (families symmetric about the
+// face normal's plane), plus the centre.
+Worst surface_errors(int dim, const std::string& correction, int cells) {
+  const double dx = 1e-3, E = 1e9;
+  std::string box_min = "[0", box_max = fmt::format("[{}", cells * dx);
+  for (int d = 1; d < dim; ++d) {
+    box_max += fmt::format(", {}", cells * dx);
+    box_min.append(", 0");
+  }
+  const std::string yaml = fmt::format(
+      "model: {{dimension: {}{}}}\nmaterial: {{youngs_modulus: 1.0e9, density: 1000}}\n"
+      "discretization: {{spacing: 0.001, horizon_factor: 3.015, registration: node_on_edge, "
+      "quadrature: {}, surface_correction: {}, body: {{box: {{min: {}], max: {}]}}}}}}\n"
+      "damage: {{enabled: false}}\nsolver: {{steps: 1}}\n",
+      dim, dim == 2 ? ", plane: stress" : "", dim == 2 ? "ipa_hybrid" : "subcell", correction,
+      box_min, box_max);
+  Model m = build_model(test::deck_from(yaml));
+  NodeSet& ns = m.nodes;
+  const double mid = 0.5 * cells * dx;
+  std::vector<std::size_t> probes;
+  for (std::size_t i = 0; i < ns.size(); ++i) {
+    bool on_line = true;  // x = depth from the x = 0 face, other coordinates at the middle
+    for (int d = 1; d < dim; ++d) on_line = on_line && std::abs(ns.x[d][i] - mid) < 1e-9;
+    if (on_line && (ns.x[0][i] < 4.5 * dx || std::abs(ns.x[0][i] - mid) < 1e-9)) probes.push_back(i);
+  }
+  EXPECT_EQ(probes.size(), 6u);
+  Worst w;
+  const auto states = strain_states(dim);
+  for (std::size_t s = 0; s < states.size(); ++s) {
+    const Strain& e = states[s];
+    for (std::size_t i = 0; i < ns.size(); ++i) {
+      for (int a = 0; a < dim; ++a) {
+        ns.u[a][i] = 0;
+        for (int b = 0; b < dim; ++b) ns.u[a][i] += e[a][b] * ns.x[b][i];
+      }
+      ns.sync_current(i);
+    }
+    std::vector<double> W;
+    pmb_energy_density(ns, m.bonds, InfluenceShape::Constant, W);
+    const double Wc = classical_energy(dim, dim == 2 ? PlaneCondition::Stress : PlaneCondition::None, E, e);
+    for (std::size_t i : probes) {
+      const double err = std::abs(W[i] / Wc - 1);
+      (s < static_cast<std::size_t>(dim) ? w.axial : w.other) =
+          std::max(s < static_cast<std::size_t>(dim) ? w.axial : w.other, err);
+    }
+  }
+  return w;
+}
+
+}  // namespace
+
+TEST(SurfaceCorrection, MomentMatchingGivesClassicalEnergyForEveryStrainNearA2DEdge) {
+  const Worst none = surface_errors(2, "false", 24);
+  const Worst energy = surface_errors(2, "energy", 24);
+  const Worst moments = surface_errors(2, "moments", 24);
+  std::printf("2D worst |W/W_cl - 1|: none %.4f/%.4f, energy %.4f/%.4f, moments %.4f/%.4f "
+              "(axial/shear+isotropic)\n", none.axial, none.other, energy.axial, energy.other,
+              moments.axial, moments.other);
+  EXPECT_GT(none.axial, 0.3);      // an edge node misses about half its family
+  EXPECT_GT(energy.other, 0.05);   // the energy method leaves shear and coupling off
+  EXPECT_LT(moments.axial, 1e-3);  // fixed point of the averaged factors: exact moments
+  EXPECT_LT(moments.other, 1e-3);
+}
+
+TEST(SurfaceCorrection, MomentMatchingGivesClassicalEnergyForEveryStrainNearA3DFace) {
+  const Worst energy = surface_errors(3, "energy", 12);
+  const Worst moments = surface_errors(3, "moments", 12);
+  std::printf("3D worst |W/W_cl - 1|: energy %.4f/%.4f, moments %.4f/%.4f\n", energy.axial,
+              energy.other, moments.axial, moments.other);
+  EXPECT_GT(energy.other, 0.05);
+  EXPECT_LT(moments.axial, 1e-3);
+  EXPECT_LT(moments.other, 1e-3);
+}
+
+// Thesis 4.1 plate, uniform grid: with surface correction the mean relative error of u_x on the
+// horizontal centre line is below 2% (issue 3 acceptance; the thesis reports about 2%).
+TEST(SurfaceCorrection, TensionPlateCentreLineErrorBelowTwoPercent) {
+  double mean_ex[2];
+  const char* methods[2] = {"energy", "moments"};
+  for (int k = 0; k < 2; ++k) {
+    RunOptions ro;
+    ro.write_files = false;
+    ro.quiet = true;
+    const RunResult r =
+        run_static(parse_deck(tension_plate_deck(methods[k], "source_horizon", 0), "plate"), ro);
+    mean_ex[k] = plate_errors(r.model.nodes, 200e6, 200e9, 1.0 / 3.0).mean_ex(0, 1);
+  }
+  std::printf("plate mean |e(u_x)|: energy %.3f%%, moments %.3f%%\n", mean_ex[0], mean_ex[1]);
+  EXPECT_LT(mean_ex[1], 2.0);
+  EXPECT_LT(mean_ex[1], mean_ex[0]);
+}
