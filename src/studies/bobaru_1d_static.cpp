@@ -173,35 +173,56 @@ int run_bobaru_1d_study(const std::string& out_dir) {
   const InfluenceShape shapes[2] = {InfluenceShape::Constant, InfluenceShape::Triangular};
   const char* shape_name[2] = {"constant", "triangular"};
 
-  // Table II, uniform refinement: bar length 20, 201..801 nodes, 21..51 nodes in the horizon.
-  fmt::print("Bobaru et al. 2009, Table II (uniform grids, bar length 20, error of u at x = 0.5)\n");
-  fmt::print("{:>6} {:>8} {:>8} | {:>11} {:>11} | {:>11} {:>11}\n", "nodes", "m", "delta",
-             "const ours", "const pub.", "tri ours", "tri pub.");
+  // Table II, uniform refinement: bar length 20, 201..801 nodes, 21..51 nodes in the horizon,
+  // i.e. m = 10..25 and delta = 1, 0.75, 2/3, 0.625. Beside each error: the same horizon with 8x
+  // the nodes (m-convergence, the continuum peridynamic value; scripts/bobaru_bar_fourier.py
+  // computes it independently by Fourier transform) and the published value. Errors are signed
+  // here (the paper prints magnitudes).
+  fmt::print("Bobaru et al. 2009, Table II (uniform grids, bar length 20, relative error of u at "
+             "x = 0.5, %, signed)\n");
+  fmt::print("{:>6} {:>4} {:>7} | {:>8} {:>8} {:>6} | {:>8} {:>8} {:>6}\n", "nodes", "m", "delta",
+             "const", "8m", "pub.", "tri", "8m", "pub.");
   const int nodes2[4] = {201, 401, 601, 801};
   const double m2[4] = {10, 15, 20, 25};
   const double pub2[2][4] = {{3.375, 1.025, 0.516, 0.259}, {3.745, 1.259, 0.562, 0.288}};
   std::vector<double> nn, e2[2];
+  int within = 0;
   for (int r = 0; r < 4; ++r) {
-    double err[2];
+    double err[2], conv[2];
     BarSpec s;
     s.length = 20.0;
     s.dx = 20.0 / (nodes2[r] - 1);
     s.m = m2[r];
     for (int k = 0; k < 2; ++k) {
       s.shape = shapes[k];
-      err[k] = 100 * solve_bobaru_bar(s).relative_error;
-      e2[k].push_back(err[k]);
+      const BarSolution sol = solve_bobaru_bar(s);
+      err[k] = 100 * (sol.u_probe - s.probe) / s.probe;
+      BarSpec fine = s;
+      fine.dx = s.dx / 8;
+      fine.m = 8 * s.m;
+      const BarSolution cs = solve_bobaru_bar(fine);
+      conv[k] = 100 * (cs.u_probe - s.probe) / s.probe;
+      e2[k].push_back(std::abs(err[k]));
+      const double ratio = std::abs(err[k]) / pub2[k][r];
+      within += ratio <= 1.5 && ratio >= 1 / 1.5;
       if (csv) csv << fmt::format("II,uniform,{},{},{},{},{:.6g},{}\n", shape_name[k], nodes2[r],
                                   s.m * s.dx, s.m * s.dx, err[k], pub2[k][r]);
     }
     nn.push_back(nodes2[r]);
-    fmt::print("{:>6} {:>8.0f} {:>8.4f} | {:>10.3f}% {:>10.3f}% | {:>10.3f}% {:>10.3f}%\n",
-               nodes2[r], s.m, s.m * s.dx, err[0], pub2[0][r], err[1], pub2[1][r]);
+    fmt::print("{:>6} {:>4.0f} {:>7.4f} | {:>+8.3f} {:>+8.3f} {:>6.3f} | {:>+8.3f} {:>+8.3f} {:>6.3f}\n",
+               nodes2[r], s.m, s.m * s.dx, err[0], conv[0], pub2[0][r], err[1], conv[1],
+               pub2[1][r]);
   }
-  fmt::print("rates: constant {:.3f} (published 1.822), triangular {:.3f} (published 1.834)\n\n",
-             fitted_rate(nn, e2[0]), fitted_rate(nn, e2[1]));
+  fmt::print("rates of |error|: constant {:.3f} (published 1.822), triangular {:.3f} (published "
+             "1.834); {} of 8 errors within a factor 1.5 of the published ones\n",
+             fitted_rate(nn, e2[0]), fitted_rate(nn, e2[1]), within);
+  fmt::print("The continuum peridynamic error at x = 0.5 changes sign near delta = 0.725 (constant) "
+             "and 0.80 (triangular): no discretization converging to it can decrease monotonically "
+             "over delta = 1 ... 0.625 as the published column does.\n\n");
 
-  // Table I: placement of a refined zone (density x2, horizon / 2, m = 10) on a bar of length 4.
+  // Table I: placement of a refined zone (density x2, horizon / 2) on a bar of length 4, with the
+  // published horizon sequence: fine delta 0.2, 0.15, 0.133, 0.125 (= 0.2 (q + 1) / 2q) and
+  // m = 5 (q + 1) = 10 ... 25 on both sides (the paper's coarse horizons are 2.2x, ours 2x).
   // The seeds do not give the zone bounds; ours, in coarse horizons delta_c:
   //  (a) [-(a + delta_c/2), a + delta_c/2]: contains the loads, coarse nodes still see them;
   //  (b) [-(a + 3 delta_c/2), a + 3 delta_c/2]: loads seen by refined nodes only;
@@ -209,7 +230,7 @@ int run_bobaru_1d_study(const std::string& out_dir) {
   //  (d) [+-a - 3 delta_c/2, +-a + 3 delta_c/2]: around each load (error at x = 0.7).
   fmt::print("Bobaru et al. 2009, Table I (refined zone x2 on a bar of length 4; rates of the "
              "error of u at x = 0.5, case d at 0.7)\n");
-  fmt::print("{:>4} {:>11} | {:>30} | {:>8} {:>10}\n", "case", "shape", "errors % (coarse dx 4/100 .. 4/400)",
+  fmt::print("{:>4} {:>11} | {:>30} | {:>8} {:>10}\n", "case", "shape", "errors % (fine delta 0.2 .. 0.125)",
              "rate", "published");
   const double pub_rate[4][2] = {{1.175, 1.800}, {1.179, 2.040}, {1.165, 1.745}, {1.355, 1.860}};
   const char* cases = "abcd";
@@ -220,8 +241,8 @@ int run_bobaru_1d_study(const std::string& out_dir) {
       for (int q = 1; q <= 4; ++q) {
         BarSpec s;
         s.length = 4.0;
-        s.dx = 4.0 / (100.0 * q);
-        s.m = 10.0;
+        s.m = 5.0 * (q + 1);
+        s.dx = 2.0 * (0.2 * (q + 1) / (2.0 * q)) / s.m;  // coarse spacing: twice the fine one
         s.factor = 2;
         s.shape = shapes[k];
         const double dc = s.m * s.dx, a = s.a;
@@ -244,8 +265,12 @@ int run_bobaru_1d_study(const std::string& out_dir) {
         if (csv) csv << fmt::format("I,{},{},{},{},{},{:.6g},\n", cases[c], shape_name[k],
                                     sol.x.size(), dc, dc / 2, err.back());
       }
-      fmt::print("({}) {:>11} | {:>30} | {:>8.3f} {:>10.3f}\n", cases[c], shape_name[k], line,
-                 fitted_rate(tot, err), pub_rate[c][k]);
+      // A rate needs errors above round-off: with exact midpoint overlaps a constant
+      // micromodulus reproduces the linear field between the loads exactly in several cases.
+      const bool resolved = *std::min_element(err.begin(), err.end()) > 1e-6;
+      fmt::print("({}) {:>11} | {:>30} | {:>8} {:>10.3f}\n", cases[c], shape_name[k], line,
+                 resolved ? fmt::format("{:.3f}", fitted_rate(tot, err)) : std::string("exact"),
+                 pub_rate[c][k]);
     }
   return 0;
 }
