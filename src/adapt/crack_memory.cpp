@@ -83,16 +83,17 @@ std::vector<std::uint32_t> rebuild_families(Model& m, const CrackMemory& mem,
   std::vector<char> rebuild(ns.size(), 0);
   bool global = m.surface_correction != SurfaceCorrection::None || std::getenv("PERIADAPT_GLOBAL_REBUILD") != nullptr;
   if (!global) {
-    double rmax = 0;
+    // Largest search radius of any active node (the radius grows with both arguments).
+    double hmax = 0, dxmax = 0;
     std::vector<std::uint32_t> ch;
     for (std::size_t i = 0; i < ns.size(); ++i) {
-      if (ns.flags[i] & kActive)
-        rmax = std::max(rmax, quadrature_search_radius(m.quadrature.rule, D, ns.horizon[i],
-                                                       ns.spacing[i]));
+      if (ns.flags[i] & kActive) hmax = std::max(hmax, ns.horizon[i]), dxmax = std::max(dxmax, ns.spacing[i]);
       if (i < changed.size() && changed[i]) ch.push_back(static_cast<std::uint32_t>(i));
     }
-    CellGrid grid(D, {ns.x[0].data(), ns.x[1].data(), ns.x[2].data()}, ns.size(),
-                  std::max(rmax, 1e-300));
+    const double rmax = std::max(quadrature_search_radius(m.quadrature.rule, D, hmax, dxmax), 1e-300);
+    // A cell list over the nodes near the changed ones only: the event's cost follows its region.
+    CellGrid grid(D, {ns.x[0].data(), ns.x[1].data(), ns.x[2].data()},
+                  active_nodes_near(ns, ch, rmax * (1 + 1e-9)), rmax);
     for (std::uint32_t c : ch) {
       rebuild[c] = 1;
       grid.for_each_within({ns.x[0][c], ns.x[1][c], ns.x[2][c]}, rmax * (1 + 1e-9),

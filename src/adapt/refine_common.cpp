@@ -105,8 +105,6 @@ void finish_refinement(Model& m, const AdaptSpec& spec, const CrackMemory& memor
   st.momentum_after = linear_momentum(ns);
   st.kinetic_after = kinetic_energy(ns);
   st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  st.kinetic_after = kinetic_energy(ns);
-  st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 }  // namespace periadapt

@@ -12,6 +12,10 @@ class CellGrid {
  public:
   // Builds cells of edge `cell_size` over the given coordinates (arrays of length n, dim used).
   CellGrid(int dim, const std::array<const double*, 3>& coords, std::size_t n, double cell_size);
+  // The same over the points `ids` only (ascending; queries report these global ids): a local
+  // index for refinement events, whose cost then follows the region, not the model.
+  CellGrid(int dim, const std::array<const double*, 3>& coords,
+           const std::vector<std::uint32_t>& ids, double cell_size);
 
   // Calls fn(j) for every point j within distance `radius` of p (squared test, inclusive).
   template <class Fn>
@@ -39,6 +43,7 @@ class CellGrid {
   }
 
  private:
+  void build(const std::vector<std::uint32_t>* ids, std::size_t n);
   long clamp_cell(int d, double c) const {
     long v = static_cast<long>(std::floor(c));
     if (v < 0) v = 0;

@@ -15,13 +15,46 @@ struct Entry {
   double inv_len;
 };
 
-// The neighbor search: a cell list over all nodes with the largest search radius.
+}  // namespace
+
+std::vector<std::uint32_t> active_nodes_near(const NodeSet& nodes,
+                                             const std::vector<std::uint32_t>& seeds, double margin) {
+  std::vector<std::uint32_t> out;
+  if (seeds.empty()) return out;
+  const int D = nodes.dim;
+  double lo[3], hi[3];
+  for (int d = 0; d < D; ++d) {
+    lo[d] = INFINITY, hi[d] = -INFINITY;
+    for (std::uint32_t i : seeds) lo[d] = std::min(lo[d], nodes.x[d][i]), hi[d] = std::max(hi[d], nodes.x[d][i]);
+    lo[d] -= margin, hi[d] += margin;
+  }
+  // One light pass over coordinates (no cell list, no per-node search).
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    if (!(nodes.flags[i] & kActive)) continue;
+    bool in = true;
+    for (int d = 0; d < D; ++d) in = in && nodes.x[d][i] >= lo[d] && nodes.x[d][i] <= hi[d];
+    if (in) out.push_back(static_cast<std::uint32_t>(i));
+  }
+  return out;
+}
+
+namespace {
+
+// The neighbor search: a cell list over all nodes with the largest search radius (or, for a
+// set of rows, over the nodes near them).
 class FamilySearch {
  public:
   FamilySearch(const NodeSet& nodes, const QuadratureSpec& quad)
       : nodes_(nodes), quad_(quad), grid_(nodes.dim,
                                           {nodes.x[0].data(), nodes.x[1].data(), nodes.x[2].data()},
                                           nodes.size(), search_radius(nodes, quad)) {}
+  // Only the rows `rows` will be searched: the cell list holds the active nodes that can be in
+  // their families (within their largest search radius of their bounding box).
+  FamilySearch(const NodeSet& nodes, const QuadratureSpec& quad,
+               const std::vector<std::uint32_t>& rows)
+      : nodes_(nodes), quad_(quad), grid_(nodes.dim,
+                                          {nodes.x[0].data(), nodes.x[1].data(), nodes.x[2].data()},
+                                          candidates(nodes, quad, rows), search_radius(nodes, quad, rows)) {}
 
   // Calls visit(j, 1/xi, beta) for every family member of node i, in a fixed order.
   template <class Visit>
@@ -74,6 +107,17 @@ class FamilySearch {
       dxmax = std::max(dxmax, nodes.spacing[i]);
     }
     return std::max(quadrature_search_radius(quad.rule, nodes.dim, hmax, dxmax), 1e-300);
+  }
+  static double search_radius(const NodeSet& nodes, const QuadratureSpec& quad,
+                              const std::vector<std::uint32_t>& rows) {
+    double r = 0;
+    for (std::uint32_t i : rows)
+      r = std::max(r, quadrature_search_radius(quad.rule, nodes.dim, nodes.horizon[i], nodes.spacing[i]));
+    return std::max(r * (1 + 1e-9), 1e-300);
+  }
+  static std::vector<std::uint32_t> candidates(const NodeSet& nodes, const QuadratureSpec& quad,
+                                               const std::vector<std::uint32_t>& rows) {
+    return active_nodes_near(nodes, rows, search_radius(nodes, quad, rows));
   }
   const NodeSet& nodes_;
   const QuadratureSpec& quad_;
@@ -136,7 +180,7 @@ void rebuild_rows(BondFamilies& fam, const NodeSet& nodes, const QuadratureSpec&
   for (std::size_t i = 0; i < n; ++i)
     if (i < rows.size() && rows[i]) list.push_back(static_cast<std::uint32_t>(i));
   if (list.empty()) return;
-  const FamilySearch search(nodes, quad);
+  const FamilySearch search(nodes, quad, list);
   std::vector<std::uint64_t> count(list.size(), 0);
 #pragma omp parallel for schedule(dynamic, 64)
   for (std::size_t r = 0; r < list.size(); ++r)

@@ -23,6 +23,11 @@ BondFamilies build_families(const NodeSet& nodes, const QuadratureSpec& quadratu
 void rebuild_rows(BondFamilies& bonds, const NodeSet& nodes, const QuadratureSpec& quadrature,
                   const std::vector<char>& rows);
 
+// Active nodes (ascending ids) inside the bounding box of `seeds` grown by `margin`: the
+// candidates of a local search, found by one pass over the coordinates.
+std::vector<std::uint32_t> active_nodes_near(const NodeSet& nodes,
+                                             const std::vector<std::uint32_t>& seeds, double margin);
+
 // Builds the transpose of the families (t_offsets, t_owner, t_bond), sorted by owner.
 void build_transpose(BondFamilies& bonds);
 
