@@ -14,10 +14,7 @@
 namespace periadapt {
 
 Adaptor::Adaptor(Model& m, VelocityVerlet& vv, const AdaptSpec& spec)
-    : m_(m), vv_(vv), spec_(spec) {
-  // The energy trigger reads W from the solver's own force pass instead of a second bond loop.
-  if (spec_.energy_fraction) vv_.set_energy_output(&W_);
-}
+    : m_(m), vv_(vv), spec_(spec) {}
 
 std::size_t Adaptor::nodes_added() const {
   std::size_t n = 0;
@@ -157,6 +154,10 @@ bool Adaptor::step() {
   const bool live = spec_.enabled && vv_.time() + vv_.dt() >= spec_.start_time * (1 - 1e-12);
   if (!live) return vv_.step();
   const NodeSet& ns = m_.nodes;
+  // The energy trigger reads W from the force pass of its check step instead of a second loop
+  // over the bonds (and only there: the other steps run the plain force kernel).
+  const bool check = spec_.energy_fraction && (vv_.step_count() + 1) % spec_.check_every == 0;
+  if (check) vv_.request_energy_at(vv_.step_count() + 1);
   if (spec_.damage_trigger) {
     vv_.set_undo(true);
     // Each pass refines by at most one level, so max_level + 1 passes always suffice.
@@ -189,8 +190,11 @@ bool Adaptor::step() {
   } else if (!vv_.step()) {
     return false;
   }
-  if (spec_.energy_fraction && vv_.step_count() % spec_.check_every == 0) {
-    if (W_.size() != ns.size()) energy_density(m_, W_);
+  if (check) {
+    if (const std::vector<double>* w = vv_.energy_density_now())
+      W_ = *w;
+    else
+      energy_density(m_, W_);
     std::vector<double>& E = W_;
     if (spec_.total_energy)
       for (std::size_t i = 0; i < ns.size(); ++i) {

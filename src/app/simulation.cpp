@@ -140,7 +140,16 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
     const bool do_vtu = vtu && vtu_steps.count(step);
     const bool do_png = opt.write_files && png_steps.count(step);
     if (!(do_hist || do_vtu || do_png)) return;
-    if (do_hist || do_vtu) U = strain_energy(m, W);
+    if (do_hist || do_vtu) {
+      // From the step's own force pass when it was asked for (see the loop), else a bond pass.
+      if (const std::vector<double>* w = vv.energy_density_now()) {
+        W = *w;
+        U = 0;
+        for (std::size_t i = 0; i < ns.size(); ++i) U += W[i] * ns.volume[i];
+      } else {
+        U = strain_energy(m, W);
+      }
+    }
     if (do_hist) {
       K = kinetic_energy(ns);
       damaged_nodes = 0;
@@ -226,6 +235,8 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
   Progress bar(ts.steps, opt.quiet);
   for (long s = 1; s <= ts.steps; ++s) {
     const auto t0 = clock::now();
+    if (s % dk.output.history_every == 0 || s == ts.steps || (vtu && vtu_steps.count(s)))
+      vv.request_energy_at(s);
     bool ok = false;
     try {
       ok = adaptor ? adaptor->step() : vv.step();

@@ -62,10 +62,20 @@ void VelocityVerlet::impose_motions(double t, bool velocities_only) {
   }
 }
 
+void VelocityVerlet::request_energy_at(long step) {
+  if (std::find(energy_requests_.begin(), energy_requests_.end(), step) == energy_requests_.end())
+    energy_requests_.push_back(step);
+}
+
 void VelocityVerlet::compute_accelerations() {
   NodeSet& ns = m_.nodes;
+  std::erase_if(energy_requests_, [&](long s) { return s < step_; });
+  const bool want_energy =
+      std::find(energy_requests_.begin(), energy_requests_.end(), step_) != energy_requests_.end();
+  energy_step_ = want_energy ? step_ : -1;
   broken_total_ += internal_forces(m_, m_.damage_enabled,
-                                   undo_enabled_ ? &saved_.broken_log : nullptr, energy_out_);
+                                   undo_enabled_ ? &saved_.broken_log : nullptr,
+                                   want_energy ? &energy_ : nullptr);
   bond_evals_ += static_cast<double>(m_.bonds.num_bonds());
   const std::size_t n = ns.size();
   const int dim = ns.dim;

@@ -43,8 +43,14 @@ class VelocityVerlet {
   void undo_last_step();
   // Recomputes loads and accelerations at the current state; call after the grid changed.
   void refresh();
-  // When set, every force pass also writes the strain-energy density of each node here.
-  void set_energy_output(std::vector<double>* W) { energy_out_ = W; }
+  // Asks the force passes that reach step `step` (the step itself, a redo of it, a refresh at
+  // it) to write every node's strain-energy density on the way: the bond loop then serves both,
+  // instead of a second pass over the bonds (history samples, the energy trigger).
+  void request_energy_at(long step);
+  // The energy densities of the current state when a force pass computed them, else nullptr.
+  const std::vector<double>* energy_density_now() const {
+    return energy_step_ == step_ && energy_.size() == m_.nodes.size() ? &energy_ : nullptr;
+  }
 
  private:
   void apply_loads(double t);
@@ -63,7 +69,9 @@ class VelocityVerlet {
   double runaway_limit_ = 0.0;
   DivergenceError divergence_{};
   bool undo_enabled_ = false;
-  std::vector<double>* energy_out_ = nullptr;
+  std::vector<long> energy_requests_;  // steps whose force passes also compute energies
+  std::vector<double> energy_;
+  long energy_step_ = -1;               // the step energy_ belongs to (-1: none)
   struct Saved {
     std::array<std::vector<double>, 3> u, v, a;
     std::vector<double> broken_weight, v_prev_fixed, reaction;
