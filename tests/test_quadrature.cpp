@@ -59,6 +59,26 @@ TEST(Quadrature, IpaHybridAreasCoverTheHorizonExactly) {
     }
 }
 
+TEST(Quadrature, IpaHybridRuleCoversTheHorizonToRoundOff) {
+  // The rule itself, in double precision (the bond arrays then store it in float, above): the
+  // covered parts of every lattice cell around a bulk node sum to pi delta^2 within 1e-10
+  // relative (issue 3 acceptance), on straight and rotated lattices, integer and off-lattice m.
+  const double dx = 0.1;
+  for (double m : {2.5, 3.0, 3.015, 3.3, 4.0, 4.7, 6.0})
+    for (double rot_deg : {0.0, 17.0, 45.0}) {
+      const double delta = m * dx, rot = rot_deg * M_PI / 180.0;
+      const double c = std::cos(rot), s = std::sin(rot);
+      const int K = static_cast<int>(std::ceil(m)) + 2;
+      double area = 0;
+      for (int i = -K; i <= K; ++i)
+        for (int j = -K; j <= K; ++j) {
+          const std::array<double, 3> off{dx * (c * i - s * j), dx * (s * i + c * j), 0.0};
+          area += subcell_fraction(2, off, delta, dx, rot) * dx * dx;
+        }
+      EXPECT_NEAR(area / (M_PI * delta * delta), 1.0, 1e-10) << "m = " << m << ", rotation " << rot_deg;
+    }
+}
+
 TEST(Quadrature, PaPdlammpsCoversItsLinearRuleNotTheDisk) {
   // Hand enumeration of the PA-PDLAMMPS rule (thesis Fig. 3.1a) at m = 3 on the unit lattice:
   // beta = 1 up to m - 1/2, (m + 1/2 - r) up to m, nothing beyond.
