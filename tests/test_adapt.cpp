@@ -82,6 +82,52 @@ TEST(Adapt, RefinementConservesLinearMomentum) {
                  std::to_string((st.kinetic_after - st.kinetic_before) / st.kinetic_before));
 }
 
+TEST(Adapt, RefiningAMirrorSymmetricStateKeepsItSymmetric) {
+  // A plate symmetric about y = 8 mm with a mirror-symmetric field (u_x, v_x even in y; u_y, v_y
+  // odd), and a block of parents symmetric about that line: the children's interpolated fields
+  // must be mirror images to round-off, whatever order the parents are processed in. (Fitting a
+  // parent's gradient after its neighbours were switched off made the result order dependent:
+  // the adaptive crack-branching run then grew asymmetric branches.)
+  Model m = build_model(test::deck_from(
+      "model: {dimension: 2, plane: stress}\n"
+      "material: {youngs_modulus: 72.0e9, density: 2440, fracture_energy: 135}\n"
+      "discretization: {spacing: 0.001, horizon_factor: 3, body: {box: {min: [0, 0], max: "
+      "[0.03, 0.016]}}}\n"
+      "solver: {time_step: 5.0e-8, steps: 10}\n"));
+  NodeSet& ns = m.nodes;
+  const double yc = 0.008;
+  for (std::size_t i = 0; i < ns.size(); ++i) {
+    const double x = ns.x[0][i], y = ns.x[1][i] - yc;
+    ns.u[0][i] = 1e-6 * std::sin(200.0 * x) * std::cos(150.0 * y);
+    ns.u[1][i] = 1e-6 * (40.0 * y + 3e4 * y * y * y) * (1 + 50.0 * x);
+    ns.v[0][i] = 2.0 + std::cos(120.0 * x) * (1 + 1e4 * y * y);
+    ns.v[1][i] = 300.0 * y * std::exp(30.0 * x);
+    ns.sync_current(i);
+  }
+  std::vector<std::uint32_t> parents;
+  for (std::uint32_t i = 0; i < ns.size(); ++i)
+    if (ns.x[0][i] > 0.010 && ns.x[0][i] < 0.018 && std::abs(ns.x[1][i] - yc) < 0.004)
+      parents.push_back(i);
+  AdaptSpec spec;
+  spec.enabled = true;
+  const std::size_t n0 = ns.size();
+  refine_nodes(m, parents, spec);
+  std::map<std::pair<long, long>, std::size_t> at;
+  for (std::size_t q = n0; q < ns.size(); ++q)
+    at[{std::lround(ns.x[0][q] * 1e7), std::lround(ns.x[1][q] * 1e7)}] = q;
+  ASSERT_EQ(at.size(), 4 * parents.size());
+  double worst = 0;
+  for (const auto& [key, q] : at) {
+    const auto it = at.find({key.first, std::lround(2 * yc * 1e7) - key.second});
+    ASSERT_NE(it, at.end());
+    const std::size_t r = it->second;
+    worst = std::max({worst, std::abs(ns.u[0][q] - ns.u[0][r]) / 1e-6,
+                      std::abs(ns.u[1][q] + ns.u[1][r]) / 1e-6, std::abs(ns.v[0][q] - ns.v[0][r]),
+                      std::abs(ns.v[1][q] + ns.v[1][r])});
+  }
+  EXPECT_LT(worst, 1e-9);
+}
+
 TEST(Adapt, MethodAKeepsVolumeAndMomentumAndCutsInterfaceCellsByEq34) {
   // A 6 x 6 block of 1 mm parents refined by method A: the 13 x 13 half-spacing lattice over it
   // (169 - 36 = 133 new nodes, the parents kept), total volume unchanged, and the coarse

@@ -60,9 +60,18 @@ RefineStats refine_nodes(Model& m, std::vector<std::uint32_t> parents, const Ada
   // Children: offsets +-h/4 along the (possibly rotated) lattice axes.
   const double cr = std::cos(m.lattice_rotation), sr = std::sin(m.lattice_rotation);
   const int nchild = 1 << D;
-  for (std::uint32_t p : parents) {
-    double G[3][3][3];  // field (u, v, a) -> component -> direction
-    fit_kinematic_gradients(ns, bf, p, G);
+  // Every parent's field gradients first, on the grid as it was: fitted while earlier parents
+  // were already switched off, a parent's fit would depend on the processing order (and a
+  // mirror-symmetric problem would be refined asymmetrically).
+  struct Gradients {
+    double g[3][3][3];  // field (u, v, a) -> component -> direction
+  };
+  std::vector<Gradients> gradients(parents.size());
+  for (std::size_t k = 0; k < parents.size(); ++k)
+    fit_kinematic_gradients(ns, bf, parents[k], gradients[k].g);
+  for (std::size_t pk = 0; pk < parents.size(); ++pk) {
+    const std::uint32_t p = parents[pk];
+    const auto& G = gradients[pk].g;
     const double h = ns.spacing[p];
     const int level = ns.level[p] + 1;
     // Sub-cell centres inside the body (a boundary cell of a node-on-edge grid keeps only its
