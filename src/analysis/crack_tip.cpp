@@ -81,7 +81,9 @@ std::optional<TipSample> CrackTipTracker::observe(const NodeSet& ns, double t) {
 
 void CrackTipTracker::detect_branching(const NodeSet& ns, const std::vector<std::uint32_t>& crack,
                                        double t) {
-  if (ns.dim != 2 || opt_.column <= 0 || opt_.branch_gap <= 0) return;
+  // 3D: bands separated within the x-y plane (plates whose crack front runs through the
+  // thickness z, as in the 3D branching study).
+  if (ns.dim < 2 || opt_.column <= 0 || opt_.branch_gap <= 0) return;
   const Vec3 dir = opt_.direction;
   const Vec3 nrm = transverse_of(dir);
   // Cross-sections ahead of the initial tip: transverse coordinates of the crack's nodes.
