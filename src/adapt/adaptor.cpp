@@ -94,7 +94,7 @@ void Adaptor::refine(const std::vector<std::uint32_t>& parents, std::size_t iden
         "refinement at t = {:.4e} s made the time step unstable: dt = {:.4e} s exceeds the stable "
         "step {:.4e} s of the refined grid (node {}, level {}); lower solver.time_step",
         vv_.time(), vv_.dt(), s.dt, s.node, static_cast<int>(m_.nodes.level[s.node])));
-  vv_.refresh();
+  vv_.refresh(&ev.stats.rebuilt);
 }
 
 bool Adaptor::coarsen_quiet(const std::vector<double>& E, double alpha) {
@@ -146,7 +146,7 @@ bool Adaptor::coarsen_quiet(const std::vector<double>& E, double alpha) {
   ev.bonds = m_.bonds.num_bonds();
   ev.dt_stable = stable_time_step(m_, ev.stats.rebuilt).dt;
   events_.push_back(ev);
-  vv_.refresh();
+  vv_.refresh(&events_.back().stats.rebuilt);
   return true;
 }
 

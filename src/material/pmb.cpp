@@ -13,11 +13,52 @@ inline double g(double t) {
 }
 
 // E: also the strain-energy density W_i (thesis Eq. 2.14) of the bonds intact after this call.
+struct RowSums {
+  double a0, a1, a2, smax;
+};
+
+// Forces of the intact bonds of one row and their largest stretch; nothing is written per bond.
+// Always this one vectorized sum, also right after bonds broke, so that a node's force depends on
+// the state only, not on the pass that found a bond broken (a refresh of some rows then
+// reproduces a full pass bit for bit). A free function with local accumulators: as a lambda
+// with captures GCC 12 no longer vectorizes it (2.6x slower).
+template <int D, InfluenceShape S>
+inline RowSums row_force_sums(const double* yp, const std::uint32_t* nbr, const double* inv_len,
+                              const float* beta, std::uint64_t kb, std::uint64_t ke, double yi0,
+                              double yi1, double yi2, double ci, double delta, double one_eth) {
+  double a0 = 0, a1 = 0, a2 = 0, smax = -INFINITY;
+#pragma omp simd reduction(+ : a0, a1, a2) reduction(max : smax)
+  for (std::uint64_t k = kb; k < ke; ++k) {
+    // 64-bit index arithmetic: a 32-bit 4*j would have to wrap and defeats the gathers.
+    const std::size_t j = 4 * static_cast<std::size_t>(nbr[k]);
+    const double d0 = yp[j] - yi0;
+    const double d1 = D > 1 ? yp[j + 1] - yi1 : 0.0;
+    const double d2 = D > 2 ? yp[j + 2] - yi2 : 0.0;
+    const double r = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2);
+    const double ail = std::abs(inv_len[k]);
+    // 0 when broken. Written branch-free: std::max (returns a reference) or a ternary here
+    // makes GCC 12 see control flow and give up vectorizing the whole loop.
+    const double bb = beta[k];
+    const double bp = 0.5 * (bb + std::abs(bb));
+    double gw = bp * yp[j + 3];
+    if constexpr (S != InfluenceShape::Constant) gw *= g<S>(1.0 / (ail * delta));
+    const double s = r * ail - one_eth;
+    smax = std::max(smax, bp > 0.0 ? s : -INFINITY);
+    // f = c g s beta V e
+    const double fr = ci * gw * (ail - one_eth / r);
+    a0 += fr * d0;
+    a1 += fr * d1;
+    a2 += fr * d2;
+  }
+  return RowSums{a0, a1, a2, smax};
+}
+
 template <int D, InfluenceShape S, bool E>
 std::size_t forces_kernel(NodeSet& ns, BondFamilies& bf, bool allow_breaking,
                           std::vector<std::uint64_t>* log, double* W, const PdroSpec* pdro,
-                          double eth) {
-  const std::size_t n = ns.size();
+                          double eth, const std::vector<std::uint32_t>* rows) {
+  const std::size_t n = rows ? rows->size() : ns.size();
+  const std::uint32_t* row = rows ? rows->data() : nullptr;
   const double* yp = ns.cur.data();
   const std::uint8_t* flags = ns.flags.data();
   const std::uint64_t* off = bf.offsets.data();
@@ -33,7 +74,8 @@ std::size_t forces_kernel(NodeSet& ns, BondFamilies& bf, bool allow_breaking,
   const double one_eth = 1.0 + eth;
 
 #pragma omp parallel for schedule(dynamic, 512) reduction(+ : broken_total)
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t r = 0; r < n; ++r) {
+    const std::size_t i = row ? row[r] : r;
     if (!(flags[i] & kActive)) continue;
     const double yi0 = yp[4 * i];
     const double yi1 = D > 1 ? yp[4 * i + 1] : 0.0;
@@ -43,75 +85,60 @@ std::size_t forces_kernel(NodeSet& ns, BondFamilies& bf, bool allow_breaking,
     const double s0 = (allow_breaking && !(flags[i] & kNoFail)) ? ns.critical_stretch[i] : INFINITY;
     const double delta = ns.horizon[i];
     const std::uint64_t kb = off[i], ke = ends[i];
-    double a0 = 0, a1 = 0, a2 = 0, w = 0;
-    double smax = -INFINITY;
-    // Fast pass: forces of intact bonds and the largest stretch; nothing is written per bond.
-#pragma omp simd reduction(+ : a0, a1, a2, w) reduction(max : smax)
-    for (std::uint64_t k = kb; k < ke; ++k) {
-      // 64-bit index arithmetic: a 32-bit 4*j would have to wrap and defeats the gathers.
-      const std::size_t j = 4 * static_cast<std::size_t>(nbr[k]);
-      const double d0 = yp[j] - yi0;
-      const double d1 = D > 1 ? yp[j + 1] - yi1 : 0.0;
-      const double d2 = D > 2 ? yp[j + 2] - yi2 : 0.0;
-      const double r = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2);
-      const double ail = std::abs(inv_len[k]);
-      // 0 when broken. Written branch-free: std::max (returns a reference) or a ternary here
-      // makes GCC 12 see control flow and give up vectorizing the whole loop.
-      const double bb = beta[k];
-      const double bp = 0.5 * (bb + std::abs(bb));
-      double gw = bp * yp[j + 3];
-      if constexpr (S != InfluenceShape::Constant) gw *= g<S>(1.0 / (ail * delta));
-      const double s = r * ail - one_eth;
-      smax = std::max(smax, bp > 0.0 ? s : -INFINITY);
-      // f = c g s beta V e
-      const double fr = ci * gw * (ail - one_eth / r);
-      a0 += fr * d0;
-      a1 += fr * d1;
-      a2 += fr * d2;
-      if constexpr (E) w += gw * s * s / ail;
-    }
-    if (smax > s0) {
-      // Rare: some bond of this node breaks now. Break it and redo the node without it.
-      a0 = a1 = a2 = w = 0;
+    // Forces of the intact bonds and their largest stretch; nothing is written per bond. Always
+    // this one vectorized sum, also right after bonds broke, so that a node's force depends on
+    // the state only, not on the pass that found a bond broken (a refresh of some rows then
+    // reproduces a full pass bit for bit). The energy has its own loop: folded in here it would
+    // change how the force sums vectorize.
+    RowSums sums = row_force_sums<D, S>(yp, nbr, inv_len, beta, kb, ke, yi0, yi1, yi2, ci, delta,
+                                        one_eth);
+    if (sums.smax > s0) {
+      // Rare: some bond of this node breaks now. Break them, then sum the rest again.
       double bw = 0;
       std::size_t nb = 0;
       for (std::uint64_t k = kb; k < ke; ++k) {
         const float b = beta[k];
-        if (!(b > 0.0f)) continue;
+        if (!(b > 0.0f) || !(inv_len[k] > 0.0)) continue;
         const std::uint32_t j = nbr[k];
         const double d0 = yp[4 * j] - yi0;
         const double d1 = D > 1 ? yp[4 * j + 1] - yi1 : 0.0;
         const double d2 = D > 2 ? yp[4 * j + 2] - yi2 : 0.0;
-        const double r = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2);
-        const double il = inv_len[k];
-        const double ail = std::abs(il);
-        const double s = r * ail - one_eth;
-        const double bv = static_cast<double>(b) * yp[4 * j + 3];
-        if (il > 0.0 && s > s0 && (!pdro || pdro_bond_breaks(ns, bf, i, k, s0, *pdro, eth))) {
+        const double s = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2) * inv_len[k] - one_eth;
+        if (s > s0 && (!pdro || pdro_bond_breaks(ns, bf, i, k, s0, *pdro, eth))) {
           beta[k] = -b;
-          bw += bv;
+          bw += static_cast<double>(b) * yp[4 * j + 3];
           ++nb;
           if (log) {
 #pragma omp critical(pmb_broken_log)
             log->push_back(k);
           }
-          continue;
         }
-        double gw = bv;
-        if constexpr (S != InfluenceShape::Constant) gw *= g<S>(1.0 / (ail * delta));
-        const double fr = ci * gw * (ail - one_eth / r);
-        a0 += fr * d0;
-        a1 += fr * d1;
-        a2 += fr * d2;
-        if constexpr (E) w += gw * s * s / ail;
       }
       ns.broken_weight[i] += bw;
       broken_total += nb;
+      if (nb > 0)
+        sums = row_force_sums<D, S>(yp, nbr, inv_len, beta, kb, ke, yi0, yi1, yi2, ci, delta, one_eth);
+    }
+    double w = 0;
+    if constexpr (E) {
+#pragma omp simd reduction(+ : w)
+      for (std::uint64_t k = kb; k < ke; ++k) {
+        const std::size_t j = 4 * static_cast<std::size_t>(nbr[k]);
+        const double d0 = yp[j] - yi0;
+        const double d1 = D > 1 ? yp[j + 1] - yi1 : 0.0;
+        const double d2 = D > 2 ? yp[j + 2] - yi2 : 0.0;
+        const double ail = std::abs(inv_len[k]);
+        const double bb = beta[k];
+        double gw = 0.5 * (bb + std::abs(bb)) * yp[j + 3];
+        if constexpr (S != InfluenceShape::Constant) gw *= g<S>(1.0 / (ail * delta));
+        const double s = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2) * ail - one_eth;
+        w += gw * s * s / ail;
+      }
     }
     if constexpr (E) W[i] = 0.25 * ci * w;
-    f0[i] = a0;
-    if constexpr (D > 1) f1[i] = a1;
-    if constexpr (D > 2) f2[i] = a2;
+    f0[i] = sums.a0;
+    if constexpr (D > 1) f1[i] = sums.a1;
+    if constexpr (D > 2) f2[i] = sums.a2;
   }
   return broken_total;
 }
@@ -198,9 +225,9 @@ template <int D, InfluenceShape S>
 struct ForcesOp {
   static std::size_t run(NodeSet& ns, BondFamilies& bf, bool brk,
                          std::vector<std::uint64_t>* log, double* W, const PdroSpec* pdro,
-                         double eth) {
-    return W ? forces_kernel<D, S, true>(ns, bf, brk, log, W, pdro, eth)
-             : forces_kernel<D, S, false>(ns, bf, brk, log, nullptr, pdro, eth);
+                         double eth, const std::vector<std::uint32_t>* rows) {
+    return W ? forces_kernel<D, S, true>(ns, bf, brk, log, W, pdro, eth, rows)
+             : forces_kernel<D, S, false>(ns, bf, brk, log, nullptr, pdro, eth, rows);
   }
 };
 template <int D, InfluenceShape S>
@@ -222,7 +249,8 @@ struct StiffnessOp {
 
 PmbStepStats pmb_forces(NodeSet& nodes, BondFamilies& bonds, InfluenceShape shape,
                         bool allow_breaking, std::vector<std::uint64_t>* broken_log,
-                        std::vector<double>* W, const PdroSpec* pdro, double thermal_strain) {
+                        std::vector<double>* W, const PdroSpec* pdro, double thermal_strain,
+                        const std::vector<std::uint32_t>* rows) {
   PmbStepStats st;
   if (pdro && pdro->enabled && allow_breaking && pdro->interpolation == PdroInterpolation::Pim)
     pdro->visible_beta->assign(bonds.beta.begin(), bonds.beta.end());
@@ -233,7 +261,7 @@ PmbStepStats pmb_forces(NodeSet& nodes, BondFamilies& bonds, InfluenceShape shap
   }
   st.newly_broken =
       dispatch<ForcesOp>(nodes.dim, shape, nodes, bonds, allow_breaking, broken_log, w,
-                         pdro && pdro->enabled ? pdro : nullptr, thermal_strain);
+                         pdro && pdro->enabled ? pdro : nullptr, thermal_strain, rows);
   return st;
 }
 

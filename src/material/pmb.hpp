@@ -24,10 +24,12 @@ struct PmbStepStats {
 // strain-energy density of every node from the same pass (inactive nodes: 0).
 // `pdro`: bonds about to break are re-checked by the refinement overlay (overlay/pdro.hpp).
 // `thermal_strain` = alpha dT enters every bond stretch as s - alpha dT (Stewart & Jeon Eq. 13).
+// `rows`: only these nodes' forces are computed (the others keep theirs); W must then be null.
 PmbStepStats pmb_forces(NodeSet& nodes, BondFamilies& bonds, InfluenceShape shape,
                         bool allow_breaking, std::vector<std::uint64_t>* broken_log = nullptr,
                         std::vector<double>* W = nullptr, const PdroSpec* pdro = nullptr,
-                        double thermal_strain = 0.0);
+                        double thermal_strain = 0.0,
+                        const std::vector<std::uint32_t>* rows = nullptr);
 
 // Strain-energy density W_i = 1/4 sum_j c_i g s^2 xi beta_j V_j over intact bonds (thesis 2.14).
 void pmb_energy_density(const NodeSet& nodes, const BondFamilies& bonds, InfluenceShape shape,

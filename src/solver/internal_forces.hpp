@@ -13,6 +13,13 @@ std::size_t internal_forces(Model& m, bool allow_breaking,
                             std::vector<std::uint64_t>* broken_log = nullptr,
                             std::vector<double>* W = nullptr);
 
+// Whether a node's force depends on its own bond row only (plain bond-based PMB): then the forces
+// of a set of rows can be computed alone (internal_forces_rows).
+bool forces_are_row_local(const Model& m);
+// The forces of the nodes `rows` only (forces_are_row_local(m) must hold); the others keep theirs.
+std::size_t internal_forces_rows(Model& m, bool allow_breaking, const std::vector<std::uint32_t>& rows,
+                                 std::vector<std::uint64_t>* broken_log = nullptr);
+
 void energy_density(const Model& m, std::vector<double>& W);
 
 }  // namespace periadapt

@@ -67,21 +67,30 @@ void VelocityVerlet::request_energy_at(long step) {
     energy_requests_.push_back(step);
 }
 
-void VelocityVerlet::compute_accelerations() {
+void VelocityVerlet::compute_accelerations(const std::vector<std::uint32_t>* rows) {
   NodeSet& ns = m_.nodes;
   std::erase_if(energy_requests_, [&](long s) { return s < step_; });
   const bool want_energy =
       std::find(energy_requests_.begin(), energy_requests_.end(), step_) != energy_requests_.end();
-  energy_step_ = want_energy ? step_ : -1;
-  broken_total_ += internal_forces(m_, m_.damage_enabled,
-                                   undo_enabled_ ? &saved_.broken_log : nullptr,
-                                   want_energy ? &energy_ : nullptr);
-  bond_evals_ += static_cast<double>(m_.bonds.num_bonds());
-  const std::size_t n = ns.size();
+  // A partial pass leaves no complete energy field: the observers then make their own. Only the
+  // rows' accelerations change (after an undo, the others hold the restored state's, which their
+  // forces were not recomputed for); constrained models take the full pass (reactions).
+  const bool partial = rows && forces_are_row_local(m_) && m_.motions.empty();
+  energy_step_ = want_energy && !partial ? step_ : -1;
+  std::vector<std::uint64_t>* log = undo_enabled_ ? &saved_.broken_log : nullptr;
+  if (partial) {
+    broken_total_ += internal_forces_rows(m_, m_.damage_enabled, *rows, log);
+    for (std::uint32_t i : *rows) bond_evals_ += static_cast<double>(m_.bonds.end(i) - m_.bonds.begin(i));
+  } else {
+    broken_total_ += internal_forces(m_, m_.damage_enabled, log, want_energy ? &energy_ : nullptr);
+    bond_evals_ += static_cast<double>(m_.bonds.num_bonds());
+  }
+  const std::size_t n = partial ? rows->size() : ns.size();
   const int dim = ns.dim;
   const bool loaded = !body_[0].empty();
 #pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t r = 0; r < n; ++r) {
+    const std::size_t i = partial ? (*rows)[r] : r;
     const double inv_rho = 1.0 / ns.density[i];
     for (int d = 0; d < dim; ++d)
       ns.a[d][i] = (ns.f[d][i] + (loaded ? body_[d][i] : 0.0)) * inv_rho;
@@ -121,10 +130,10 @@ void VelocityVerlet::initialize() {
   last_power_ = external_power();
 }
 
-void VelocityVerlet::refresh() {
+void VelocityVerlet::refresh(const std::vector<std::uint32_t>* rows) {
   m_.nodes.sync_all_current();
   apply_loads(time_);
-  compute_accelerations();
+  compute_accelerations(rows);
   last_power_ = external_power();
 }
 

@@ -42,7 +42,9 @@ class VelocityVerlet {
   void set_undo(bool on) { undo_enabled_ = on; }
   void undo_last_step();
   // Recomputes loads and accelerations at the current state; call after the grid changed.
-  void refresh();
+  // `rows` (optional): the bond rows the change touched; where a node's force depends on its own
+  // row only (plain PMB) just these forces are computed again, the others being unchanged.
+  void refresh(const std::vector<std::uint32_t>* rows = nullptr);
   // Asks the force passes that reach step `step` (the step itself, a redo of it, a refresh at
   // it) to write every node's strain-energy density on the way: the bond loop then serves both,
   // instead of a second pass over the bonds (history samples, the energy trigger).
@@ -54,7 +56,7 @@ class VelocityVerlet {
 
  private:
   void apply_loads(double t);
-  void compute_accelerations();
+  void compute_accelerations(const std::vector<std::uint32_t>* rows = nullptr);
   void impose_motions(double t, bool velocities_only);
   double external_power() const;
 
