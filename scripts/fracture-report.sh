@@ -5,7 +5,7 @@
 # Crack branching 6.1: uniform level 0 (1 mm), uniform level 1 (0.5 mm), adaptive 0 -> 1;
 # Kalthoff-Winkler 6.2: adaptive level 1, level 2 and the energy trigger alone; 3D branching (end
 # of 6.1): adaptive level 1. Both 2D branching studies also at the printed 22 MPa.
-# Usage: scripts/fracture-report.sh [OUT] (about 10 s on 2 cores).
+# Usage: scripts/fracture-report.sh [OUT] (about 20 s on 2 cores).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out="${1:-out/report}"
