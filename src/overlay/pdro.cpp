@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <vector>
 
 #include "core/visible_gradient.hpp"
@@ -13,17 +14,22 @@ namespace {
 
 using P3 = std::array<double, 3>;
 
-// Current positions of the virtual points `at` by the PDDO over the active nodes of both
-// families (damaged ones included); false when the moment matrix is singular.
+// Current positions of the virtual points `at` by the PDDO over the active nodes within the
+// horizons of both I and J (the paper's sampling; damaged ones included), plus I and J; false
+// when the moment matrix is singular. (Over the union of the two families the fit smoothed the
+// crack-tip field more: SENT at n = 5 failed 24% above the plain run instead of 14%.)
 bool positions_by_pddo(const NodeSet& ns, const BondFamilies& bf, std::size_t i, std::size_t j,
                        const std::array<P3, 4>& at, std::array<P3, 4>& y) {
   const int D = ns.dim;
+  // Rows are sorted by neighbour id (families.cpp), so the common members come out of one merge.
   std::vector<std::uint32_t> ids;
-  ids.reserve(bf.end(i) - bf.begin(i) + bf.end(j) - bf.begin(j) + 2);
+  ids.reserve(std::min(bf.end(i) - bf.begin(i), bf.end(j) - bf.begin(j)) + 2);
+  std::set_intersection(bf.neighbor.begin() + static_cast<long>(bf.begin(i)),
+                        bf.neighbor.begin() + static_cast<long>(bf.end(i)),
+                        bf.neighbor.begin() + static_cast<long>(bf.begin(j)),
+                        bf.neighbor.begin() + static_cast<long>(bf.end(j)), std::back_inserter(ids));
   ids.push_back(static_cast<std::uint32_t>(i));
   ids.push_back(static_cast<std::uint32_t>(j));
-  for (std::uint64_t q = bf.begin(i); q < bf.end(i); ++q) ids.push_back(bf.neighbor[q]);
-  for (std::uint64_t q = bf.begin(j); q < bf.end(j); ++q) ids.push_back(bf.neighbor[q]);
   std::sort(ids.begin(), ids.end());
   ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
   std::erase_if(ids, [&](std::uint32_t p) { return !(ns.flags[p] & kActive); });

@@ -2,8 +2,8 @@
 // Peridynamic refinement overlay (Stewart & Jeon 2019, section 2, Eq. 5): before a bond I-J
 // breaks, it is re-checked on a virtual sub-grid of spacing dx' = dx/n along it: points
 //   i = I + dx' e,  i' = C - dx'/2 e,  j' = C + dx'/2 e,  j = J - dx' e   (C the midpoint),
-// whose displacements come from the PDDO over the material points of both families (damaged
-// ones included). The bond breaks only if one of the sub-pairs I-i, i'-j', j-J is stretched
+// whose displacements come from the PDDO over the material points within the horizons of both I
+// and J (damaged ones included). The bond breaks only if one of the sub-pairs I-i, i'-j', j-J is stretched
 // beyond s0' = s0 sqrt(n); otherwise it stays and is checked again later. dx is the grid spacing
 // of the bond's owner (the paper's figures show nearest neighbours, where it is also the bond
 // length; for longer bonds the sub-pairs stay dx/n long, at both ends and at the centre). Taking
