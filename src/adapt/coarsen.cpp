@@ -59,8 +59,9 @@ RefineStats coarsen_nodes(Model& m, const std::vector<std::uint32_t>& parents) {
   RefineStats st;
   NodeSet& ns = m.nodes;
   if (parents.empty()) return st;
-  st.momentum_before = linear_momentum(ns);
-  st.kinetic_before = kinetic_energy(ns);
+  const MomentumAndKinetic before = momentum_and_kinetic(ns);
+  st.momentum_before = before.momentum;
+  st.kinetic_before = before.kinetic;
   const auto ch = children_of(ns);
   std::vector<char> vanishing(ns.size(), 0);
   for (std::uint32_t p : parents)
@@ -95,8 +96,9 @@ RefineStats coarsen_nodes(Model& m, const std::vector<std::uint32_t>& parents) {
   std::vector<char> changed(vanishing);
   for (std::uint32_t p : parents) changed[p] = 1;
   st.rebuilt = rebuild_families(m, memory, ns.size(), changed);
-  st.momentum_after = linear_momentum(ns);
-  st.kinetic_after = kinetic_energy(ns);
+  const MomentumAndKinetic after = momentum_and_kinetic(ns);
+  st.momentum_after = after.momentum;
+  st.kinetic_after = after.kinetic;
   st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return st;
 }

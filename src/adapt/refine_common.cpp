@@ -13,8 +13,9 @@ std::vector<char> begin_refinement(Model& m, std::vector<std::uint32_t>& parents
   std::sort(parents.begin(), parents.end());
   parents.erase(std::unique(parents.begin(), parents.end()), parents.end());
   if (parents.empty()) return {};
-  st.momentum_before = linear_momentum(m.nodes);
-  st.kinetic_before = kinetic_energy(m.nodes);
+  const MomentumAndKinetic pk = momentum_and_kinetic(m.nodes);
+  st.momentum_before = pk.momentum;
+  st.kinetic_before = pk.kinetic;
   std::vector<char> is_parent(m.nodes.size(), 0);
   for (std::uint32_t p : parents) is_parent[p] = 1;
   return is_parent;
@@ -102,8 +103,9 @@ void finish_refinement(Model& m, const AdaptSpec& spec, const CrackMemory& memor
     changed[i] = changed[i] || i >= n0 ||
                  (i < horizon_before.size() && horizon_before[i] != ns.horizon[i]);
   st.rebuilt = rebuild_families(m, memory, n0, changed);
-  st.momentum_after = linear_momentum(ns);
-  st.kinetic_after = kinetic_energy(ns);
+  const MomentumAndKinetic pk = momentum_and_kinetic(ns);
+  st.momentum_after = pk.momentum;
+  st.kinetic_after = pk.kinetic;
   st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 

@@ -12,4 +12,12 @@ double strain_energy(const Model& model, std::vector<double>& W);
 // Total linear momentum (for conservation checks).
 std::array<double, 3> linear_momentum(const NodeSet& nodes);
 
+struct MomentumAndKinetic {
+  std::array<double, 3> momentum{0, 0, 0};
+  double kinetic = 0;
+};
+// Both in one parallel pass, summed in fixed blocks combined in order: the same bits for any
+// number of threads (refinement events report them before and after).
+MomentumAndKinetic momentum_and_kinetic(const NodeSet& nodes);
+
 }  // namespace periadapt
