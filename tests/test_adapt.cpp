@@ -10,6 +10,7 @@
 #include "adapt/refine.hpp"
 #include "app/simulation.hpp"
 #include "model/build_model.hpp"
+#include "solver/internal_forces.hpp"
 #include "solver/velocity_verlet.hpp"
 #include "analysis/energy.hpp"
 #include "test_helpers.hpp"
@@ -87,6 +88,33 @@ TEST(Adapt, RefreshOfTheRebuiltRowsEqualsAFullForcePass) {
     ++compared;
   }
   EXPECT_GT(compared, 800u);
+}
+
+TEST(Adapt, EnergyDensitiesSurviveARowRefreshExactly) {
+  // At a step whose energy densities were asked for, an event's partial refresh updates the
+  // rebuilt rows' densities and keeps the others: the field must equal a fresh computation.
+  Model m = build_model(test::deck_from(cracked_plate_deck(14e6, "{max_level: 1, energy_trigger: 0.7}", 40)));
+  VelocityVerlet vv(m, 5e-8);
+  vv.initialize();
+  for (int s = 0; s < 40; ++s) {
+    if (s == 39) vv.request_energy_at(40);
+    ASSERT_TRUE(vv.step());
+  }
+  ASSERT_NE(vv.energy_density_now(), nullptr);
+  std::vector<std::uint32_t> parents;
+  for (std::uint32_t i = 0; i < m.nodes.size(); ++i)
+    if (std::abs(m.nodes.x[0][i] - 0.016) < 0.003 && std::abs(m.nodes.x[1][i] - 0.01) < 0.003)
+      parents.push_back(i);
+  AdaptSpec spec;
+  spec.enabled = true;
+  const RefineStats st = refine_nodes(m, parents, spec);
+  vv.refresh(&st.rebuilt);
+  const std::vector<double>* kept = vv.energy_density_now();
+  ASSERT_NE(kept, nullptr);
+  std::vector<double> fresh;
+  energy_density(m, fresh);
+  ASSERT_EQ(kept->size(), fresh.size());
+  for (std::size_t i = 0; i < fresh.size(); ++i) EXPECT_EQ((*kept)[i], fresh[i]) << "node " << i;
 }
 
 TEST(Adapt, RefinementConservesLinearMomentum) {

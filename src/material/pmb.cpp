@@ -255,7 +255,14 @@ PmbStepStats pmb_forces(NodeSet& nodes, BondFamilies& bonds, InfluenceShape shap
   if (pdro && pdro->enabled && allow_breaking && pdro->interpolation == PdroInterpolation::Pim)
     pdro->visible_beta->assign(bonds.beta.begin(), bonds.beta.end());
   double* w = nullptr;
-  if (W) {
+  if (W && rows) {
+    // Only the listed rows change: the others keep their densities; listed inactive nodes
+    // (parents switched off by an event) hold none.
+    W->resize(nodes.size(), 0.0);
+    for (std::uint32_t i : *rows)
+      if (!(nodes.flags[i] & kActive)) (*W)[i] = 0.0;
+    w = W->data();
+  } else if (W) {
     W->assign(nodes.size(), 0.0);
     w = W->data();
   }

@@ -24,7 +24,8 @@ struct PmbStepStats {
 // strain-energy density of every node from the same pass (inactive nodes: 0).
 // `pdro`: bonds about to break are re-checked by the refinement overlay (overlay/pdro.hpp).
 // `thermal_strain` = alpha dT enters every bond stretch as s - alpha dT (Stewart & Jeon Eq. 13).
-// `rows`: only these nodes' forces are computed (the others keep theirs); W must then be null.
+// `rows`: only these nodes' forces (and, when W is given, energy densities) are computed; the
+// others keep theirs.
 PmbStepStats pmb_forces(NodeSet& nodes, BondFamilies& bonds, InfluenceShape shape,
                         bool allow_breaking, std::vector<std::uint64_t>* broken_log = nullptr,
                         std::vector<double>* W = nullptr, const PdroSpec* pdro = nullptr,

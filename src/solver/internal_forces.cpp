@@ -24,8 +24,8 @@ std::size_t internal_forces(Model& m, bool allow_breaking, std::vector<std::uint
 bool forces_are_row_local(const Model& m) { return !m.material.lps && !m.dual_horizon; }
 
 std::size_t internal_forces_rows(Model& m, bool allow_breaking, const std::vector<std::uint32_t>& rows,
-                                 std::vector<std::uint64_t>* log) {
-  return pmb_forces(m.nodes, m.bonds, m.material.shape, allow_breaking, log, nullptr, &m.pdro,
+                                 std::vector<std::uint64_t>* log, std::vector<double>* W) {
+  return pmb_forces(m.nodes, m.bonds, m.material.shape, allow_breaking, log, W, &m.pdro,
                     m.material.thermal_strain, &rows)
       .newly_broken;
 }

@@ -17,8 +17,10 @@ std::size_t internal_forces(Model& m, bool allow_breaking,
 // of a set of rows can be computed alone (internal_forces_rows).
 bool forces_are_row_local(const Model& m);
 // The forces of the nodes `rows` only (forces_are_row_local(m) must hold); the others keep theirs.
+// With W, the rows' energy densities are updated too (W must hold the others').
 std::size_t internal_forces_rows(Model& m, bool allow_breaking, const std::vector<std::uint32_t>& rows,
-                                 std::vector<std::uint64_t>* broken_log = nullptr);
+                                 std::vector<std::uint64_t>* broken_log = nullptr,
+                                 std::vector<double>* W = nullptr);
 
 void energy_density(const Model& m, std::vector<double>& W);
 

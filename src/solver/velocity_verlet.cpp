@@ -72,14 +72,17 @@ void VelocityVerlet::compute_accelerations(const std::vector<std::uint32_t>* row
   std::erase_if(energy_requests_, [&](long s) { return s < step_; });
   const bool want_energy =
       std::find(energy_requests_.begin(), energy_requests_.end(), step_) != energy_requests_.end();
-  // A partial pass leaves no complete energy field: the observers then make their own. Only the
-  // rows' accelerations change (after an undo, the others hold the restored state's, which their
-  // forces were not recomputed for); constrained models take the full pass (reactions).
+  // Only the rows' accelerations change in a partial pass (after an undo, the others hold the
+  // restored state's, which their forces were not recomputed for); constrained models take the
+  // full pass (reactions). Its energy field is complete only if the other rows' densities belong
+  // to this very state (computed by this step's pass); else the observers make their own.
   const bool partial = rows && forces_are_row_local(m_) && m_.motions.empty();
-  energy_step_ = want_energy && !partial ? step_ : -1;
+  const bool energy_kept = partial && want_energy && energy_step_ == step_;
+  energy_step_ = want_energy && (!partial || energy_kept) ? step_ : -1;
   std::vector<std::uint64_t>* log = undo_enabled_ ? &saved_.broken_log : nullptr;
   if (partial) {
-    broken_total_ += internal_forces_rows(m_, m_.damage_enabled, *rows, log);
+    broken_total_ += internal_forces_rows(m_, m_.damage_enabled, *rows, log,
+                                          energy_kept ? &energy_ : nullptr);
     for (std::uint32_t i : *rows) bond_evals_ += static_cast<double>(m_.bonds.end(i) - m_.bonds.begin(i));
   } else {
     broken_total_ += internal_forces(m_, m_.damage_enabled, log, want_energy ? &energy_ : nullptr);
