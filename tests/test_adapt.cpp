@@ -61,30 +61,47 @@ std::vector<std::uint32_t> all_active(const Model& m) {
 
 }  // namespace
 
+namespace {
+
+// A pre-cracked plate run 40 steps (energy densities asked for at the last), then a block of
+// parents around the crack tip refined: where the partial-refresh tests start.
+struct TipEvent {
+  Model m = build_model(
+      test::deck_from(cracked_plate_deck(14e6, "{max_level: 1, energy_trigger: 0.7}", 40)));
+  VelocityVerlet vv{m, 5e-8};
+  RefineStats st;
+  bool energy_before_event = false;  // the step's pass computed the densities
+  TipEvent() {
+    vv.initialize();
+    vv.request_energy_at(40);
+    for (int s = 0; s < 40; ++s) EXPECT_TRUE(vv.step());
+    energy_before_event = vv.energy_density_now() != nullptr;
+    std::vector<std::uint32_t> parents;
+    for (std::uint32_t i = 0; i < m.nodes.size(); ++i)
+      if (std::abs(m.nodes.x[0][i] - 0.016) < 0.003 && std::abs(m.nodes.x[1][i] - 0.01) < 0.003)
+        parents.push_back(i);
+    AdaptSpec spec;
+    spec.enabled = true;
+    st = refine_nodes(m, parents, spec);
+  }
+};
+
+}  // namespace
+
 TEST(Adapt, RefreshOfTheRebuiltRowsEqualsAFullForcePass) {
   // After an event, plain PMB recomputes only the forces of the rows the event rebuilt: every
   // other row has the same neighbours at the same positions. The accelerations must equal, bit
   // for bit, those of a full pass on a copy of the model.
-  Model m = build_model(test::deck_from(cracked_plate_deck(14e6, "{max_level: 1, energy_trigger: 0.7}", 40)));
-  VelocityVerlet vv(m, 5e-8);
-  vv.initialize();
-  for (int s = 0; s < 40; ++s) ASSERT_TRUE(vv.step());
-  std::vector<std::uint32_t> parents;
-  for (std::uint32_t i = 0; i < m.nodes.size(); ++i)
-    if (std::abs(m.nodes.x[0][i] - 0.016) < 0.003 && std::abs(m.nodes.x[1][i] - 0.01) < 0.003)
-      parents.push_back(i);
-  AdaptSpec spec;
-  spec.enabled = true;
-  const RefineStats st = refine_nodes(m, parents, spec);
-  ASSERT_LT(st.rebuilt.size(), m.nodes.size() / 2);  // a local event
-  Model full = m;
-  vv.refresh(&st.rebuilt);
+  TipEvent ev;
+  ASSERT_LT(ev.st.rebuilt.size(), ev.m.nodes.size() / 2);  // a local event
+  Model full = ev.m;
+  ev.vv.refresh(&ev.st.rebuilt);
   VelocityVerlet vv_full(full, 5e-8);
   vv_full.initialize();  // loads and forces of the whole model at the same state
   std::size_t compared = 0;
-  for (std::size_t i = 0; i < m.nodes.size(); ++i) {
-    if (!(m.nodes.flags[i] & kActive)) continue;
-    for (int d = 0; d < 2; ++d) EXPECT_EQ(m.nodes.a[d][i], full.nodes.a[d][i]) << "node " << i;
+  for (std::size_t i = 0; i < ev.m.nodes.size(); ++i) {
+    if (!(ev.m.nodes.flags[i] & kActive)) continue;
+    for (int d = 0; d < 2; ++d) EXPECT_EQ(ev.m.nodes.a[d][i], full.nodes.a[d][i]) << "node " << i;
     ++compared;
   }
   EXPECT_GT(compared, 800u);
@@ -93,26 +110,13 @@ TEST(Adapt, RefreshOfTheRebuiltRowsEqualsAFullForcePass) {
 TEST(Adapt, EnergyDensitiesSurviveARowRefreshExactly) {
   // At a step whose energy densities were asked for, an event's partial refresh updates the
   // rebuilt rows' densities and keeps the others: the field must equal a fresh computation.
-  Model m = build_model(test::deck_from(cracked_plate_deck(14e6, "{max_level: 1, energy_trigger: 0.7}", 40)));
-  VelocityVerlet vv(m, 5e-8);
-  vv.initialize();
-  for (int s = 0; s < 40; ++s) {
-    if (s == 39) vv.request_energy_at(40);
-    ASSERT_TRUE(vv.step());
-  }
-  ASSERT_NE(vv.energy_density_now(), nullptr);
-  std::vector<std::uint32_t> parents;
-  for (std::uint32_t i = 0; i < m.nodes.size(); ++i)
-    if (std::abs(m.nodes.x[0][i] - 0.016) < 0.003 && std::abs(m.nodes.x[1][i] - 0.01) < 0.003)
-      parents.push_back(i);
-  AdaptSpec spec;
-  spec.enabled = true;
-  const RefineStats st = refine_nodes(m, parents, spec);
-  vv.refresh(&st.rebuilt);
-  const std::vector<double>* kept = vv.energy_density_now();
+  TipEvent ev;
+  ASSERT_TRUE(ev.energy_before_event);
+  ev.vv.refresh(&ev.st.rebuilt);
+  const std::vector<double>* kept = ev.vv.energy_density_now();
   ASSERT_NE(kept, nullptr);
   std::vector<double> fresh;
-  energy_density(m, fresh);
+  energy_density(ev.m, fresh);
   ASSERT_EQ(kept->size(), fresh.size());
   for (std::size_t i = 0; i < fresh.size(); ++i) EXPECT_EQ((*kept)[i], fresh[i]) << "node " << i;
 }

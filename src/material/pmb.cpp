@@ -53,6 +53,30 @@ inline RowSums row_force_sums(const double* yp, const std::uint32_t* nbr, const 
   return RowSums{a0, a1, a2, smax};
 }
 
+// sum over the intact bonds of one row of g beta V s^2 xi (broken ones weigh 0, branch-free so
+// it vectorizes): 4 W_i / c_i. The force pass (when energies are asked for) and the energy
+// kernel share it, so both give the same bits.
+template <int D, InfluenceShape S>
+inline double row_energy_sum(const double* yp, const std::uint32_t* nbr, const double* inv_len,
+                             const float* beta, std::uint64_t kb, std::uint64_t ke, double yi0,
+                             double yi1, double yi2, double delta, double one_eth) {
+  double w = 0;
+#pragma omp simd reduction(+ : w)
+  for (std::uint64_t k = kb; k < ke; ++k) {
+    const std::size_t j = 4 * static_cast<std::size_t>(nbr[k]);
+    const double d0 = yp[j] - yi0;
+    const double d1 = D > 1 ? yp[j + 1] - yi1 : 0.0;
+    const double d2 = D > 2 ? yp[j + 2] - yi2 : 0.0;
+    const double ail = std::abs(inv_len[k]);
+    const double bb = beta[k];
+    double gw = 0.5 * (bb + std::abs(bb)) * yp[j + 3];
+    if constexpr (S != InfluenceShape::Constant) gw *= g<S>(1.0 / (ail * delta));
+    const double s = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2) * ail - one_eth;
+    w += gw * s * s / ail;
+  }
+  return w;
+}
+
 template <int D, InfluenceShape S, bool E>
 std::size_t forces_kernel(NodeSet& ns, BondFamilies& bf, bool allow_breaking,
                           std::vector<std::uint64_t>* log, double* W, const PdroSpec* pdro,
@@ -85,11 +109,8 @@ std::size_t forces_kernel(NodeSet& ns, BondFamilies& bf, bool allow_breaking,
     const double s0 = (allow_breaking && !(flags[i] & kNoFail)) ? ns.critical_stretch[i] : INFINITY;
     const double delta = ns.horizon[i];
     const std::uint64_t kb = off[i], ke = ends[i];
-    // Forces of the intact bonds and their largest stretch; nothing is written per bond. Always
-    // this one vectorized sum, also right after bonds broke, so that a node's force depends on
-    // the state only, not on the pass that found a bond broken (a refresh of some rows then
-    // reproduces a full pass bit for bit). The energy has its own loop: folded in here it would
-    // change how the force sums vectorize.
+    // The energy has its own loop (row_energy_sum): folded in here it would change how the
+    // force sums vectorize, and forces would depend on when energies are asked for.
     RowSums sums = row_force_sums<D, S>(yp, nbr, inv_len, beta, kb, ke, yi0, yi1, yi2, ci, delta,
                                         one_eth);
     if (sums.smax > s0) {
@@ -119,23 +140,9 @@ std::size_t forces_kernel(NodeSet& ns, BondFamilies& bf, bool allow_breaking,
       if (nb > 0)
         sums = row_force_sums<D, S>(yp, nbr, inv_len, beta, kb, ke, yi0, yi1, yi2, ci, delta, one_eth);
     }
-    double w = 0;
-    if constexpr (E) {
-#pragma omp simd reduction(+ : w)
-      for (std::uint64_t k = kb; k < ke; ++k) {
-        const std::size_t j = 4 * static_cast<std::size_t>(nbr[k]);
-        const double d0 = yp[j] - yi0;
-        const double d1 = D > 1 ? yp[j + 1] - yi1 : 0.0;
-        const double d2 = D > 2 ? yp[j + 2] - yi2 : 0.0;
-        const double ail = std::abs(inv_len[k]);
-        const double bb = beta[k];
-        double gw = 0.5 * (bb + std::abs(bb)) * yp[j + 3];
-        if constexpr (S != InfluenceShape::Constant) gw *= g<S>(1.0 / (ail * delta));
-        const double s = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2) * ail - one_eth;
-        w += gw * s * s / ail;
-      }
-    }
-    if constexpr (E) W[i] = 0.25 * ci * w;
+    if constexpr (E)
+      W[i] = 0.25 * ci *
+             row_energy_sum<D, S>(yp, nbr, inv_len, beta, kb, ke, yi0, yi1, yi2, delta, one_eth);
     f0[i] = sums.a0;
     if constexpr (D > 1) f1[i] = sums.a1;
     if constexpr (D > 2) f2[i] = sums.a2;
@@ -155,30 +162,15 @@ void energy_kernel(const NodeSet& ns, const BondFamilies& bf, double eth, std::v
   const double* inv_len = bf.inv_length.data();
   const float* beta = bf.beta.data();
   const double one_eth = 1.0 + eth;
-  // Branch-free over bonds (broken ones weigh 0), like the force kernel's fast pass, so it
-  // vectorizes: this runs for every history sample and after every refinement event.
 #pragma omp parallel for schedule(dynamic, 512)
   for (std::size_t i = 0; i < n; ++i) {
     if (!(flags[i] & kActive)) continue;
     const double yi0 = yp[4 * i];
     const double yi1 = D > 1 ? yp[4 * i + 1] : 0.0;
     const double yi2 = D > 2 ? yp[4 * i + 2] : 0.0;
-    const double delta = ns.horizon[i];
-    double w = 0;
-#pragma omp simd reduction(+ : w)
-    for (std::uint64_t k = off[i]; k < ends[i]; ++k) {
-      const std::size_t j = 4 * static_cast<std::size_t>(nbr[k]);
-      const double d0 = yp[j] - yi0;
-      const double d1 = D > 1 ? yp[j + 1] - yi1 : 0.0;
-      const double d2 = D > 2 ? yp[j + 2] - yi2 : 0.0;
-      const double ail = std::abs(inv_len[k]);
-      const double bb = beta[k];
-      double gw = 0.5 * (bb + std::abs(bb)) * yp[j + 3];
-      if constexpr (S != InfluenceShape::Constant) gw *= g<S>(1.0 / (ail * delta));
-      const double s = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2) * ail - one_eth;
-      w += gw * s * s / ail;
-    }
-    W[i] = 0.25 * ns.micromodulus[i] * w;
+    W[i] = 0.25 * ns.micromodulus[i] *
+           row_energy_sum<D, S>(yp, nbr, inv_len, beta, off[i], ends[i], yi0, yi1, yi2,
+                                ns.horizon[i], one_eth);
   }
 }
 
