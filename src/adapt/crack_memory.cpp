@@ -81,13 +81,17 @@ std::vector<std::uint32_t> rebuild_families(Model& m, const CrackMemory& mem,
   const int D = ns.dim;
   // The window: changed nodes and every active node whose search radius reaches one of them.
   std::vector<char> rebuild(ns.size(), 0);
-  bool global = m.surface_correction != SurfaceCorrection::None || std::getenv("PERIADAPT_GLOBAL_REBUILD") != nullptr;
+  const bool global = m.surface_correction != SurfaceCorrection::None ||
+                      std::getenv("PERIADAPT_GLOBAL_REBUILD") != nullptr;
   if (!global) {
     // Largest search radius of any active node (the radius grows with both arguments).
     double hmax = 0, dxmax = 0;
     std::vector<std::uint32_t> ch;
     for (std::size_t i = 0; i < ns.size(); ++i) {
-      if (ns.flags[i] & kActive) hmax = std::max(hmax, ns.horizon[i]), dxmax = std::max(dxmax, ns.spacing[i]);
+      if (ns.flags[i] & kActive) {
+        hmax = std::max(hmax, ns.horizon[i]);
+        dxmax = std::max(dxmax, ns.spacing[i]);
+      }
       if (i < changed.size() && changed[i]) ch.push_back(static_cast<std::uint32_t>(i));
     }
     const double rmax = std::max(quadrature_search_radius(m.quadrature.rule, D, hmax, dxmax), 1e-300);

@@ -8,26 +8,19 @@
 
 namespace periadapt {
 
-double kinetic_energy(const NodeSet& ns) {
+double kinetic_energy(const NodeSet& ns) { return momentum_and_kinetic(ns).kinetic; }
+
+double strain_energy_of(const NodeSet& nodes, const std::vector<double>& W) {
   double e = 0;
-  const std::size_t n = ns.size();
+  const std::size_t n = W.size();
 #pragma omp parallel for reduction(+ : e) schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!(ns.flags[i] & kActive)) continue;
-    double v2 = 0;
-    for (int d = 0; d < ns.dim; ++d) v2 += ns.v[d][i] * ns.v[d][i];
-    e += 0.5 * ns.density[i] * ns.volume[i] * v2;
-  }
+  for (std::size_t i = 0; i < n; ++i) e += W[i] * nodes.volume[i];
   return e;
 }
 
 double strain_energy(const Model& model, std::vector<double>& W) {
   energy_density(model, W);
-  double e = 0;
-  const std::size_t n = W.size();
-#pragma omp parallel for reduction(+ : e) schedule(static)
-  for (std::size_t i = 0; i < n; ++i) e += W[i] * model.nodes.volume[i];
-  return e;
+  return strain_energy_of(model.nodes, W);
 }
 
 MomentumAndKinetic momentum_and_kinetic(const NodeSet& ns) {
@@ -57,13 +50,6 @@ MomentumAndKinetic momentum_and_kinetic(const NodeSet& ns) {
   return r;
 }
 
-std::array<double, 3> linear_momentum(const NodeSet& ns) {
-  std::array<double, 3> p{0, 0, 0};
-  for (std::size_t i = 0; i < ns.size(); ++i) {
-    if (!(ns.flags[i] & kActive)) continue;
-    for (int d = 0; d < ns.dim; ++d) p[d] += ns.density[i] * ns.volume[i] * ns.v[d][i];
-  }
-  return p;
-}
+std::array<double, 3> linear_momentum(const NodeSet& ns) { return momentum_and_kinetic(ns).momentum; }
 
 }  // namespace periadapt

@@ -9,6 +9,8 @@ namespace periadapt {
 double kinetic_energy(const NodeSet& nodes);
 // Total strain energy sum_i W_i V_i; fills W with the energy densities (thesis Eq. 2.14).
 double strain_energy(const Model& model, std::vector<double>& W);
+// The same sum over given densities W.
+double strain_energy_of(const NodeSet& nodes, const std::vector<double>& W);
 // Total linear momentum (for conservation checks).
 std::array<double, 3> linear_momentum(const NodeSet& nodes);
 
@@ -17,7 +19,7 @@ struct MomentumAndKinetic {
   double kinetic = 0;
 };
 // Both in one parallel pass, summed in fixed blocks combined in order: the same bits for any
-// number of threads (refinement events report them before and after).
+// number of threads. kinetic_energy and linear_momentum are its two halves.
 MomentumAndKinetic momentum_and_kinetic(const NodeSet& nodes);
 
 }  // namespace periadapt

@@ -144,8 +144,7 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
       // From the step's own force pass when it was asked for (see the loop), else a bond pass.
       if (const std::vector<double>* w = vv.energy_density_now()) {
         W = *w;
-        U = 0;
-        for (std::size_t i = 0; i < ns.size(); ++i) U += W[i] * ns.volume[i];
+        U = strain_energy_of(ns, W);
       } else {
         U = strain_energy(m, W);
       }
