@@ -28,12 +28,14 @@ TEST(Pdro, PddoReproducesLinearAndQuadraticFields) {
     };
     for (const std::array<double, 3>& at : {std::array<double, 3>{0.033, -0.021, 0.0},
                                             std::array<double, 3>{-0.12, 0.05, dim == 3 ? 0.07 : 0.0}}) {
-      std::vector<double> c;
-      ASSERT_TRUE(pddo_weights(dim, at, pts, 0.4, c));
-      double fl = 0, fq = 0;
-      for (std::size_t k = 0; k < pts.size(); ++k) fl += c[k] * lin(pts[k].x), fq += c[k] * quad(pts[k].x);
-      EXPECT_NEAR(fl, lin(at), 1e-10) << dim << "D";
-      EXPECT_NEAR(fq, quad(at), 1e-10) << dim << "D";
+      for (PddoWeight w : {PddoWeight::Uniform, PddoWeight::Gaussian}) {
+        std::vector<double> c;
+        ASSERT_TRUE(pddo_weights(dim, at, pts, 0.4, c, w));
+        double fl = 0, fq = 0;
+        for (std::size_t k = 0; k < pts.size(); ++k) fl += c[k] * lin(pts[k].x), fq += c[k] * quad(pts[k].x);
+        EXPECT_NEAR(fl, lin(at), 1e-10) << dim << "D";
+        EXPECT_NEAR(fq, quad(at), 1e-10) << dim << "D";
+      }
     }
   }
 }

@@ -127,11 +127,13 @@ int main(int argc, char** argv) {
   bool bar_quick = false;
   PdroSentOptions sent;
   study->add_flag("--pim", bar.pim, "pdro-*: overlay interpolation by PIM instead of PDDO");
+  study->add_flag("--gaussian", bar.gaussian,
+                  "pdro-*: PDDO with the Gaussian weight exp(-4 r^2/delta^2) instead of uniform");
   PdroDiskOptions disk;
   std::string study_deck;
   study->add_option("--deck", study_deck, "pdro-sent, pdro-disk: the deck to vary (default: "
                                           "examples/pdro_sent_2d.yaml, examples/pdro_disk_2d.yaml)");
-  study->add_flag("--quick", bar_quick, "pdro-bar: targets 0.9, 0.5, 0.2 mm only; pdro-sent: 1 mm native and n = 2 only; pdro-disk: n = 2 only");
+  study->add_flag("--quick", bar_quick, "pdro-bar: targets 0.9, 0.5, 0.2 mm only; pdro-sent: 1 mm native and n = 2, 5 only; pdro-disk: n = 2 only");
   study->add_option("--threads", threads, "OpenMP threads (default: all cores)")
       ->check(CLI::PositiveNumber);
   try {
@@ -154,12 +156,14 @@ int main(int argc, char** argv) {
       }
       if (study_name == "pdro-sent") {
         sent.pim = bar.pim;
+        sent.gaussian = bar.gaussian;
         if (!study_deck.empty()) sent.deck = study_deck;
-        if (bar_quick) sent.native_spacings = {1.0e-3}, sent.overlay_n = {2.0};
+        if (bar_quick) sent.native_spacings = {1.0e-3}, sent.overlay_n = {2.0, 5.0};
         return run_pdro_sent_study(out, sent);
       }
       if (study_name == "pdro-disk") {
         disk.pim = bar.pim;
+        disk.gaussian = bar.gaussian;
         if (!study_deck.empty()) disk.deck = study_deck;
         if (bar_quick) disk.overlay_n = {2.0};
         return run_pdro_disk_study(out, disk);

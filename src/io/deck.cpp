@@ -332,6 +332,9 @@ Deck parse_deck(const std::string& text, const std::string& name) {
       dk.pdro.interpolation = pd->choice("interpolation", {"pddo", "pim"}, "pddo") == "pim"
                                   ? PdroInterpolation::Pim
                                   : PdroInterpolation::Pddo;
+      dk.pdro.weight = pd->choice("weight", {"uniform", "gaussian"}, "uniform") == "gaussian"
+                           ? PddoWeight::Gaussian
+                           : PddoWeight::Uniform;
       pd->finish();
       // (bond_pairing is read later: checked below with the solver section)
     }

@@ -20,7 +20,7 @@ int basis(int dim, const double* d, double* P) {
 }  // namespace
 
 bool pddo_weights(int dim, const std::array<double, 3>& at, const std::vector<PddoPoint>& pts,
-                  double delta, std::vector<double>& c) {
+                  double delta, std::vector<double>& c, PddoWeight weight) {
   const int nb = dim == 1 ? 3 : dim == 2 ? 6 : 10;
   // Scale coordinates by delta so the moment matrix is well conditioned.
   Eigen::MatrixXd A = Eigen::MatrixXd::Zero(nb, nb);
@@ -31,7 +31,7 @@ bool pddo_weights(int dim, const std::array<double, 3>& at, const std::vector<Pd
       d[a] = (pts[k].x[static_cast<std::size_t>(a)] - at[static_cast<std::size_t>(a)]) / delta;
       r2 += d[a] * d[a];
     }
-    w[k] = std::exp(-4.0 * r2) * pts[k].volume;
+    w[k] = (weight == PddoWeight::Gaussian ? std::exp(-4.0 * r2) : 1.0) * pts[k].volume;
     double* p = &P[k * nb];
     basis(dim, d, p);
     for (int q = 0; q < nb; ++q)

@@ -48,8 +48,8 @@ BarResult pull_bar(double dx, double n_overlay, const PdroBarOptions& o) {
       fmt::arg("d", delta), fmt::arg("Ld", L - delta), fmt::arg("vx", fmt::format("{}*(2*x/{}-1)", v, L)),
       fmt::arg("T", end_time));
   if (n_overlay > 0)
-    yaml += fmt::format("damage: {{overlay: {{n: {}, interpolation: {}}}}}\n", n_overlay,
-                        o.pim ? "pim" : "pddo");
+    yaml += fmt::format("damage: {{overlay: {{n: {}, interpolation: {}, weight: {}}}}}\n", n_overlay,
+                        o.pim ? "pim" : "pddo", o.gaussian ? "gaussian" : "uniform");
   const Deck dk = parse_deck(yaml, "pdro-bar (built-in)");
   Model m = build_model(dk);
   const TimeStepChoice ts = choose_time_step(dk, m);
@@ -98,7 +98,8 @@ int run_pdro_bar_study(const std::string& out_dir, const PdroBarOptions& o) {
       "Stewart & Jeon 2019, 3.1: plane-strain bar {:.0f} x {:.0f} mm pulled at {} m/s per end "
       "(homogeneous start), m = 4, G0 = 6 J/m^2; native grids vs a {:.1f} mm grid with the "
       "overlay ({})\n",
-      1e3 * o.length, 1e3 * o.width, o.end_speed, 1e3 * o.coarse, o.pim ? "PIM" : "PDDO");
+      1e3 * o.length, 1e3 * o.width, o.end_speed, 1e3 * o.coarse,
+      o.pim ? "PIM" : o.gaussian ? "PDDO, Gaussian weight" : "PDDO, uniform weight");
   const double s0_coarse = s0_plane_strain(kM * o.coarse);
   const double plain = pull_bar(o.coarse, 0.0, o).strain_at_peak;
   fmt::print("coarse grid without overlay: failure strain {:.4e} (Eq. 2: {:.4e})\n", plain,

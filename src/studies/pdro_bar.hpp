@@ -18,7 +18,8 @@ struct PdroBarOptions {
   std::vector<double> targets{0.9e-3, 0.8e-3, 0.7e-3, 0.6e-3, 0.5e-3,
                               0.4e-3, 0.3e-3, 0.2e-3, 0.1e-3};  // dx' (m)
   double coarse = 1e-3;
-  bool pim = false;  // overlay interpolation: PIM instead of PDDO
+  bool pim = false;       // overlay interpolation: PIM instead of PDDO
+  bool gaussian = false;  // PDDO weight: Gaussian instead of uniform
 };
 
 struct PdroBarRow {

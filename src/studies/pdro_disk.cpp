@@ -58,6 +58,7 @@ DiskRun run_variant(const PdroDiskOptions& o, const std::string& name, double dx
     if (n > 0) {
       d["damage"]["overlay"]["n"] = n;
       if (o.pim) d["damage"]["overlay"]["interpolation"] = "pim";
+      if (o.gaussian) d["damage"]["overlay"]["weight"] = "gaussian";
     }
     d["solver"]["end_time"] = o.snapshot_time;
     d["output"]["vtu_snapshots"] = 1;

@@ -19,6 +19,7 @@ struct PdroDiskOptions {
   std::vector<double> overlay_n{2.0, 2.5, 3.0};
   double snapshot_time = 24e-6;
   bool pim = false;
+  bool gaussian = false;  // PDDO weight: Gaussian instead of uniform
 };
 
 int run_pdro_disk_study(const std::string& out_dir, const PdroDiskOptions& opt);

@@ -13,6 +13,7 @@ struct PdroSentOptions {
   std::vector<double> native_spacings{1.0e-3, 0.7e-3, 0.5e-3};
   std::vector<double> overlay_n{1.0 / 0.7, 2.0, 5.0};
   bool pim = false;
+  bool gaussian = false;  // PDDO weight: Gaussian instead of uniform
 };
 
 // LEFM failure stress of an edge crack a in a strip of width W (Eqs. 11-12).
