@@ -9,6 +9,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -356,6 +357,17 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
     for (const TipSample& s : tracker.path())
       path.push_back({s.time, s.position[0], s.position[1], s.position[2]});
     c["tip_path"] = path;  // [t, x, y, z]
+    if (!tracker.path().empty()) {
+      const Vec3& last = tracker.path().back().position;
+      c["final_tip_m"] = {last[0], last[1], last[2]};
+      if (!dk.grid.holes.empty()) {
+        // Crack-hole interaction (thesis 6.3): how close the tracked tip came to any hole.
+        double closest = std::numeric_limits<double>::infinity();
+        for (const TipSample& s : tracker.path())
+          for (const Shape& h : dk.grid.holes) closest = std::min(closest, h.distance_to_shape(s.position));
+        c["closest_approach_to_hole_m"] = closest;
+      }
+    }
     nlohmann::json sp = nlohmann::json::array();
     for (const auto& w : tracker.speeds()) sp.push_back({w[0], w[1]});
     c["speed_history"] = sp;  // [t_mid, v]

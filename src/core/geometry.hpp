@@ -1,5 +1,6 @@
 #pragma once
 // Geometry primitives used to describe bodies, holes, regions and pre-cracks.
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -58,6 +59,33 @@ struct Shape {
       }
     }
     return false;
+  }
+  // Distance from p to the shape itself (0 inside; the complement flag is ignored): how close a
+  // crack tip came to a hole.
+  double distance_to_shape(const Vec3& p) const {
+    switch (kind) {
+      case Kind::All: return 0.0;
+      case Kind::Box: {
+        double r2 = 0;
+        for (int d = 0; d < 3; ++d) {
+          const double e = std::max({box.lo[d] - p[d], 0.0, p[d] - box.hi[d]});
+          r2 += e * e;
+        }
+        return std::sqrt(r2);
+      }
+      case Kind::Disk: return std::max(0.0, std::hypot(p[0] - center[0], p[1] - center[1]) - radius);
+      case Kind::Cylinder: {
+        double r2 = 0;
+        for (int d = 0; d < 3; ++d)
+          if (d != axis) r2 += (p[d] - center[d]) * (p[d] - center[d]);
+        return std::max(0.0, std::sqrt(r2) - radius);
+      }
+      case Kind::Sphere: {
+        const Vec3 q = sub(p, center);
+        return std::max(0.0, std::sqrt(dot(q, q)) - radius);
+      }
+    }
+    return 0.0;
   }
 };
 
