@@ -43,14 +43,16 @@ TEST(Pdro, PddoReproducesLinearAndQuadraticFields) {
 namespace {
 
 // Bonds broken by one force pass under a uniform strain eps along x, with or without the overlay.
-std::size_t broken_under_uniform_strain(double eps, bool overlay, bool lps = false) {
+std::size_t broken_under_uniform_strain(double eps, bool overlay, bool lps = false,
+                                        const char* sampling = "three_pairs") {
   const std::string yaml =
       std::string(lps ? "model: {dimension: 2, plane: strain, formulation: lps}\n"
                       : "model: {dimension: 2, plane: strain}\n") +
       "material: {youngs_modulus: 72.0e9, density: 2400, critical_stretch: 1.0e-3" +
       (lps ? ", poisson_ratio: 0.22}\n" : "}\n") +
       "discretization: {spacing: 0.001, horizon_factor: 4, body: {box: {min: [0, 0], max: [0.03, 0.02]}}}\n" +
-      std::string(overlay ? "damage: {overlay: {n: 4}}\n" : "") + "solver: {steps: 1}\n";
+      (overlay ? std::string("damage: {overlay: {n: 4, sampling: ") + sampling + "}}\n" : std::string()) +
+      "solver: {steps: 1}\n";
   Model m = build_model(test::deck_from(yaml));
   NodeSet& ns = m.nodes;
   for (std::size_t i = 0; i < ns.size(); ++i) {
@@ -68,13 +70,15 @@ std::size_t broken_under_uniform_strain(double eps, bool overlay, bool lps = fal
 TEST(Pdro, OverlayRaisesTheStrengthOfAUniformFieldBySqrtN) {
   // A linear field has the same strain on the sub-grid as on the bond, so with n = 4 a bond only
   // breaks beyond 2 s0 (s0' = s0 sqrt(n)): at 1.5 s0 the plain model breaks the bonds along x,
-  // the overlay keeps them; at 2.5 s0 both break.
-  for (bool lps : {false, true}) {
-    SCOPED_TRACE(lps ? "lps" : "pmb");
-    EXPECT_GT(broken_under_uniform_strain(1.5e-3, false, lps), 0u);
-    EXPECT_EQ(broken_under_uniform_strain(1.5e-3, true, lps), 0u);
-    EXPECT_GT(broken_under_uniform_strain(2.5e-3, true, lps), 0u);
-  }
+  // the overlay keeps them; at 2.5 s0 both break. Sub-pairs over the whole bond see the same
+  // strain as the paper's three, so the strength is the same.
+  for (bool lps : {false, true})
+    for (const char* sampling : {"three_pairs", "whole_bond"}) {
+      SCOPED_TRACE(std::string(lps ? "lps " : "pmb ") + sampling);
+      EXPECT_GT(broken_under_uniform_strain(1.5e-3, false, lps), 0u);
+      EXPECT_EQ(broken_under_uniform_strain(1.5e-3, true, lps, sampling), 0u);
+      EXPECT_GT(broken_under_uniform_strain(2.5e-3, true, lps, sampling), 0u);
+    }
 }
 
 TEST(Pdro, BarFailureStrainWithOverlayMatchesTheNativeFinerGrid) {

@@ -129,6 +129,8 @@ int main(int argc, char** argv) {
   study->add_flag("--pim", bar.pim, "pdro-*: overlay interpolation by PIM instead of PDDO");
   study->add_flag("--gaussian", bar.gaussian,
                   "pdro-*: PDDO with the Gaussian weight exp(-4 r^2/delta^2) instead of uniform");
+  study->add_flag("--whole-bond", bar.whole_bond,
+                  "pdro-*: overlay sub-pairs over the whole bond instead of the paper's three");
   PdroDiskOptions disk;
   std::string study_deck;
   study->add_option("--deck", study_deck, "pdro-sent, pdro-disk: the deck to vary (default: "
@@ -157,6 +159,7 @@ int main(int argc, char** argv) {
       if (study_name == "pdro-sent") {
         sent.pim = bar.pim;
         sent.gaussian = bar.gaussian;
+        sent.whole_bond = bar.whole_bond;
         if (!study_deck.empty()) sent.deck = study_deck;
         if (bar_quick) sent.native_spacings = {1.0e-3}, sent.overlay_n = {2.0, 5.0};
         return run_pdro_sent_study(out, sent);
@@ -164,6 +167,7 @@ int main(int argc, char** argv) {
       if (study_name == "pdro-disk") {
         disk.pim = bar.pim;
         disk.gaussian = bar.gaussian;
+        disk.whole_bond = bar.whole_bond;
         if (!study_deck.empty()) disk.deck = study_deck;
         if (bar_quick) disk.overlay_n = {2.0};
         return run_pdro_disk_study(out, disk);

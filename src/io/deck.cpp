@@ -335,6 +335,9 @@ Deck parse_deck(const std::string& text, const std::string& name) {
       dk.pdro.weight = pd->choice("weight", {"uniform", "gaussian"}, "uniform") == "gaussian"
                            ? PddoWeight::Gaussian
                            : PddoWeight::Uniform;
+      dk.pdro.sampling = pd->choice("sampling", {"three_pairs", "whole_bond"}, "three_pairs") == "whole_bond"
+                             ? PdroSampling::WholeBond
+                             : PdroSampling::ThreePairs;
       pd->finish();
       // (bond_pairing is read later: checked below with the solver section)
     }

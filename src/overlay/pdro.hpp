@@ -28,6 +28,11 @@ namespace periadapt {
 
 enum class PdroInterpolation { Pddo, Pim };
 
+// Where the sub-pairs sit: the paper's three (at I, at the centre, at J), or consecutive sub-pairs
+// over the whole bond (our option: the paper suspects that n > 2 fails because the field between
+// I and J is sampled too sparsely; the overlay runs on few bonds, so denser sampling is cheap).
+enum class PdroSampling { ThreePairs, WholeBond };
+
 // How often the overlay ran: re-checks of bonds past s0, and how many of them broke.
 struct PdroCounters {
   std::atomic<std::uint64_t> checks{0}, breaks{0};
@@ -39,6 +44,7 @@ struct PdroSpec {
   std::optional<Shape> region;  // bonds whose owner lies inside (default: everywhere)
   PdroInterpolation interpolation = PdroInterpolation::Pddo;
   PddoWeight weight = PddoWeight::Uniform;  // of the PDDO
+  PdroSampling sampling = PdroSampling::ThreePairs;
   std::shared_ptr<PdroCounters> counters = std::make_shared<PdroCounters>();
   // PIM: bond factors at the start of the force pass. Visibility is read from this copy, not from
   // the factors other threads are breaking, so results do not depend on the thread count.

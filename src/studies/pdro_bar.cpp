@@ -48,8 +48,9 @@ BarResult pull_bar(double dx, double n_overlay, const PdroBarOptions& o) {
       fmt::arg("d", delta), fmt::arg("Ld", L - delta), fmt::arg("vx", fmt::format("{}*(2*x/{}-1)", v, L)),
       fmt::arg("T", end_time));
   if (n_overlay > 0)
-    yaml += fmt::format("damage: {{overlay: {{n: {}, interpolation: {}, weight: {}}}}}\n", n_overlay,
-                        o.pim ? "pim" : "pddo", o.gaussian ? "gaussian" : "uniform");
+    yaml += fmt::format("damage: {{overlay: {{n: {}, interpolation: {}, weight: {}, sampling: {}}}}}\n",
+                        n_overlay, o.pim ? "pim" : "pddo", o.gaussian ? "gaussian" : "uniform",
+                        o.whole_bond ? "whole_bond" : "three_pairs");
   const Deck dk = parse_deck(yaml, "pdro-bar (built-in)");
   Model m = build_model(dk);
   const TimeStepChoice ts = choose_time_step(dk, m);

@@ -20,6 +20,7 @@ struct PdroBarOptions {
   double coarse = 1e-3;
   bool pim = false;       // overlay interpolation: PIM instead of PDDO
   bool gaussian = false;  // PDDO weight: Gaussian instead of uniform
+  bool whole_bond = false;  // overlay sub-pairs over the whole bond instead of the paper's three
 };
 
 struct PdroBarRow {

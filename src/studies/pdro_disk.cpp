@@ -59,6 +59,7 @@ DiskRun run_variant(const PdroDiskOptions& o, const std::string& name, double dx
       d["damage"]["overlay"]["n"] = n;
       if (o.pim) d["damage"]["overlay"]["interpolation"] = "pim";
       if (o.gaussian) d["damage"]["overlay"]["weight"] = "gaussian";
+      if (o.whole_bond) d["damage"]["overlay"]["sampling"] = "whole_bond";
     }
     d["solver"]["end_time"] = o.snapshot_time;
     d["output"]["vtu_snapshots"] = 1;

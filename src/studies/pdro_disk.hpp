@@ -20,6 +20,7 @@ struct PdroDiskOptions {
   double snapshot_time = 24e-6;
   bool pim = false;
   bool gaussian = false;  // PDDO weight: Gaussian instead of uniform
+  bool whole_bond = false;  // overlay sub-pairs over the whole bond instead of the paper's three
 };
 
 int run_pdro_disk_study(const std::string& out_dir, const PdroDiskOptions& opt);

@@ -40,6 +40,7 @@ SentRun run_variant(const PdroSentOptions& o, double dx, double n, const std::st
       d["damage"]["overlay"]["n"] = n;
       if (o.pim) d["damage"]["overlay"]["interpolation"] = "pim";
       if (o.gaussian) d["damage"]["overlay"]["weight"] = "gaussian";
+      if (o.whole_bond) d["damage"]["overlay"]["sampling"] = "whole_bond";
     }
     d["output"]["history_every"] = 2;  // tip samples: failure time to 2 steps
     d["output"]["vtu_snapshots"] = 0;

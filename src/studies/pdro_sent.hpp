@@ -14,6 +14,7 @@ struct PdroSentOptions {
   std::vector<double> overlay_n{1.0 / 0.7, 2.0, 5.0};
   bool pim = false;
   bool gaussian = false;  // PDDO weight: Gaussian instead of uniform
+  bool whole_bond = false;  // overlay sub-pairs over the whole bond instead of the paper's three
 };
 
 // LEFM failure stress of an edge crack a in a strip of width W (Eqs. 11-12).
