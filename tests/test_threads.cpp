@@ -66,9 +66,9 @@ TEST(Threads, AdaptiveResultsDoNotDependOnThreadCount) {
 }
 
 TEST(Threads, OverlayResultsDoNotDependOnThreadCount) {
-  for (const char* interp : {"pddo", "pim"}) {
-    SCOPED_TRACE(interp);
+  for (const char* variant : {"interpolation: pddo", "interpolation: pim", "sampling: whole_bond"}) {
+    SCOPED_TRACE(variant);
     expect_same_with_1_and_2_threads(
-        branching_plate(std::string("damage: {overlay: {n: 2, interpolation: ") + interp + "}}\n"));
+        branching_plate(std::string("damage: {overlay: {n: 2, ") + variant + "}}\n"));
   }
 }
