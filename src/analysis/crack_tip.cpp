@@ -67,6 +67,7 @@ std::optional<TipSample> CrackTipTracker::observe(const NodeSet& ns, double t) {
   if (best_i == ns.size()) return std::nullopt;
   TipSample s{t, {ns.x[0][best_i], ns.x[1][best_i], ns.x[2][best_i]}, best};
   samples_.push_back(s);
+  if (!first_advance_ && s.advance > 0) first_advance_ = t;
   if (!initiation_ && s.advance > opt_.advance) initiation_ = t;
   if (!window_start_) window_start_ = s;
   if (t - window_start_->time >= opt_.window * (1 - 1e-9)) {

@@ -41,8 +41,12 @@ class CrackTipTracker {
   // Windowed speed at the most recent sample (Eq. 6.1), 0 before the first full window.
   double current_speed() const { return current_speed_; }
   std::optional<double> initiation_time() const { return initiation_; }
+  // First time the tip lies ahead of the origin at all (the thesis' "crack starts propagating":
+  // a node past the pre-crack end is cracked); initiation_time() asks for `advance` more.
+  std::optional<double> first_advance_time() const { return first_advance_; }
   std::optional<double> branching_time() const { return branching_time_; }
   std::optional<Vec3> branching_point() const { return branching_point_; }
+
   const std::vector<TipSample>& path() const { return samples_; }
   // Window speeds (t_mid, v) over the whole run.
   const std::vector<std::array<double, 2>>& speeds() const { return window_speeds_; }
@@ -58,6 +62,7 @@ class CrackTipTracker {
   std::optional<TipSample> window_start_;
   double current_speed_ = 0;
   std::optional<double> initiation_;
+  std::optional<double> first_advance_;
   std::optional<double> branching_time_;
   std::optional<Vec3> branching_point_;
 };

@@ -340,6 +340,9 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
                                                        : nlohmann::json(nullptr);
     c["branching_time_s"] = tracker.branching_time() ? nlohmann::json(*tracker.branching_time())
                                                      : nlohmann::json(nullptr);
+    c["first_advance_time_s"] = tracker.first_advance_time()
+                                    ? nlohmann::json(*tracker.first_advance_time())
+                                    : nlohmann::json(nullptr);
     if (tracker.branching_point())
       c["branch_length_m"] = norm(sub(*tracker.branching_point(), tip.origin));
     if (!tracker.path().empty()) {
