@@ -46,3 +46,33 @@ TEST(CrackTip, FirstAdvanceAndInitiationFollowTheTipPastTheOrigin) {
   EXPECT_EQ(tr.first_advance_time(), 2.0);
   EXPECT_EQ(tr.initiation_time(), 3.0);
 }
+
+TEST(CrackTip, MirrorAsymmetryIsTheHausdorffDistanceBetweenTheMirroredBranches) {
+  // Two branches leaving the crack line at x = 2: nodes at (2 + k, +-0.5 k), k = 1..4, plus the
+  // pre-crack's cracked nodes on the line. Symmetric: 0. Moving the last upper node up by 0.3
+  // leaves it 0.3 from its mirror image, the largest gap either way.
+  NodeSet ns;
+  ns.dim = 2;
+  auto add = [&](double x, double y) {
+    const std::size_t i = ns.append({x, y, 0.0}, 1.0, 1.0);
+    ns.family_weight[i] = 1.0;
+    ns.broken_weight[i] = 0.5;
+    return i;
+  };
+  for (double x : {0.5, 1.5}) add(x, 0.0);
+  std::size_t last_up = 0;
+  for (int k = 1; k <= 4; ++k) {
+    last_up = add(2.0 + k, 0.5 * k);
+    add(2.0 + k, -0.5 * k);
+  }
+  CrackTipOptions o;
+  o.origin = {1.0, 0.0, 0.0};
+  o.direction = {1.0, 0.0, 0.0};
+  o.link = 1.7;  // the branch nodes are 1.1 apart, the first 1.6 from the last pre-crack node
+  o.seed_radius = 1.0;
+  CrackTipTracker tr(o);
+  ASSERT_TRUE(tr.mirror_asymmetry(ns));
+  EXPECT_NEAR(*tr.mirror_asymmetry(ns), 0.0, 1e-15);
+  ns.x[1][last_up] += 0.3;
+  EXPECT_NEAR(*tr.mirror_asymmetry(ns), 0.3, 1e-12);
+}

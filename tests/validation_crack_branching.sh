@@ -4,7 +4,9 @@
 # t_i and t_b and 3% in mean tip speed, with 6,293 of 16,000 nodes). Runs the adaptive example
 # and the uniform level-1 example and checks: both initiate and branch; adaptive t_i within 1 us
 # (four history samples) and t_b within 2.5 us of the uniform run; mean tip speeds within 10%;
-# at most half the uniform node count; level 1 reached; linear momentum conserved by every
+# at most half the uniform node count; the adaptive branches symmetric about the crack line
+# within 1 mm at 50 us (the issue's acceptance; the plate, grid and refinement are symmetric, so
+# we measure 0 up to round-off); level 1 reached; linear momentum conserved by every
 # refinement event to 1e-9; ParaView, PNG and CSV outputs exist.
 set -u
 bin="$1"; adaptive="$2"; uniform="$3"; out=$(mktemp -d)
@@ -29,6 +31,8 @@ if (( fail == 0 )); then
   check "branching time" "$tb_a" "$tb_u" "a - b <= 2.5e-6 && b - a <= 2.5e-6"
   check "mean tip speed" "$v_a" "$v_u" "a <= 1.1 * b && b <= 1.1 * a"
   check "node count" "$n_a" "$n_u" "a <= 0.5 * b && a > 4000"
+  asym=$(num adaptive branch_asymmetry_m)
+  awk -v s="$asym" 'BEGIN { exit !(s != "null" && s + 0 <= 1e-3) }' || { echo "FAIL: branch asymmetry $asym m"; fail=1; }
 fi
 [[ "$lvl" == 1 ]] || { echo "FAIL: finest level $lvl"; fail=1; }
 # Column 9 of refinement.csv: relative change of linear momentum in the event.
@@ -36,5 +40,5 @@ awk -F, 'NR > 1 && $9 + 0 > 1e-9 { bad = 1 } END { exit bad }' "$out/adaptive/re
 for f in snapshot.pvd history.csv refinement.csv damage_0050.000us.png; do
   [[ -s "$out/adaptive/$f" ]] || { echo "FAIL: missing $f"; fail=1; }
 done
-echo "adaptive vs uniform 0.5 mm: t_i $ti_a / $ti_u s, t_b $tb_a / $tb_u s, speed $v_a / $v_u m/s, nodes $n_a / $n_u"
+echo "adaptive vs uniform 0.5 mm: t_i $ti_a / $ti_u s, t_b $tb_a / $tb_u s, speed $v_a / $v_u m/s, nodes $n_a / $n_u, adaptive branch asymmetry ${asym:-?} m"
 exit $fail

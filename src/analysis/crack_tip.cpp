@@ -108,6 +108,32 @@ void CrackTipTracker::detect_branching(const NodeSet& ns, const std::vector<std:
   }
 }
 
+std::optional<double> CrackTipTracker::mirror_asymmetry(const NodeSet& ns) const {
+  const Vec3 dir = opt_.direction;
+  const Vec3 nrm = transverse_of(dir);
+  // (advance, transverse, z) of the nodes on each side; the lower side mirrored.
+  std::vector<Vec3> up, low;
+  for (std::uint32_t i : crack_nodes(ns)) {
+    const Vec3 r = sub({ns.x[0][i], ns.x[1][i], ns.x[2][i]}, opt_.origin);
+    const double adv = dot(r, dir), tr = dot(r, nrm);
+    if (adv <= 0) continue;
+    if (tr > 0) up.push_back({adv, tr, r[2]});
+    if (tr < 0) low.push_back({adv, -tr, r[2]});
+  }
+  if (up.empty() || low.empty()) return std::nullopt;
+  // Brute force: called once per run, on the crack's nodes only.
+  auto directed = [](const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+    double worst = 0;
+    for (const Vec3& p : a) {
+      double best = INFINITY;
+      for (const Vec3& q : b) best = std::min(best, norm(sub(p, q)));
+      worst = std::max(worst, best);
+    }
+    return worst;
+  };
+  return std::max(directed(up, low), directed(low, up));
+}
+
 double CrackTipTracker::mean_speed() const {
   if (!initiation_) return 0.0;
   // Windows after initiation, up to the last one in which the tip still moved.

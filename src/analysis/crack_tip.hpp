@@ -50,6 +50,11 @@ class CrackTipTracker {
   const std::vector<TipSample>& path() const { return samples_; }
   // Window speeds (t_mid, v) over the whole run.
   const std::vector<std::array<double, 2>>& speeds() const { return window_speeds_; }
+  // Branch symmetry about the crack line (the line through the origin along the direction): the
+  // Hausdorff distance between the crack's cracked nodes ahead of the origin on one side and the
+  // mirror images of those on the other side; 0 for a perfectly symmetric pattern, nullopt when
+  // one side has none.
+  std::optional<double> mirror_asymmetry(const NodeSet& nodes) const;
   double mean_speed() const;   // mean over windows after initiation while the tip moves
   double max_speed() const;
 

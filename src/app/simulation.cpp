@@ -343,8 +343,11 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
     c["first_advance_time_s"] = tracker.first_advance_time()
                                     ? nlohmann::json(*tracker.first_advance_time())
                                     : nlohmann::json(nullptr);
-    if (tracker.branching_point())
+    if (tracker.branching_point()) {
       c["branch_length_m"] = norm(sub(*tracker.branching_point(), tip.origin));
+      const std::optional<double> asym = tracker.mirror_asymmetry(ns);
+      c["branch_asymmetry_m"] = asym ? nlohmann::json(*asym) : nlohmann::json(nullptr);
+    }
     if (!tracker.path().empty()) {
       // Angle of the segment from the initial tip to the last tip, from the tracking direction
       // (counter-clockwise positive): the path angle of a straight crack.
