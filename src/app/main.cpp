@@ -213,8 +213,9 @@ int main(int argc, char** argv) {
       auto us = [](const nlohmann::json& v) {
         return v.is_null() ? std::string("-") : fmt::format("{:.2f} us", v.get<double>() * 1e6);
       };
-      fmt::print("crack: initiation {}, branching {}, mean speed {:.0f} m/s, max speed {:.0f} m/s\n",
-                 us(c["initiation_time_s"]), us(c["branching_time_s"]),
+      fmt::print("crack: starts {} (initiation {}), branching {}, mean speed {:.0f} m/s, max speed "
+                 "{:.0f} m/s\n",
+                 us(c["first_advance_time_s"]), us(c["initiation_time_s"]), us(c["branching_time_s"]),
                  c["mean_speed_m_s"].get<double>(), c["max_speed_m_s"].get<double>());
     }
     if (s.contains("outputs"))
