@@ -2,10 +2,12 @@
 // PA-PDLAMMPS rule by its known linear approximation.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "discretize/partial_volume.hpp"
 #include "model/build_model.hpp"
+#include "studies/weak_directions.hpp"
 #include "test_helpers.hpp"
 
 using namespace periadapt;
@@ -94,4 +96,21 @@ TEST(Quadrature, PaPdlammpsCoversItsLinearRuleNotTheDisk) {
   EXPECT_NEAR(got, expect, 1e-5);
   EXPECT_GT(std::abs(got - M_PI * m * m) / (M_PI * m * m), 0.01);  // the known deficit
   RecordProperty("pa_pdlammps_over_disk", std::to_string(got / (M_PI * m * m)));
+}
+
+TEST(Quadrature, WeakBondDirectionsFollowTheFamilyOfEachRule) {
+  // Thesis 5.2 for m = 3: the bond directions are atan(b / a) of the lattice vectors (a, b) in a
+  // family. PA-PDLAMMPS keeps |xi| <= 3 dX: (1,0), (2,1), (1,1), (1,2), (0,1) and multiples.
+  // IPA-Hybrid also keeps cells the horizon only partly covers, (3,1) and (3,2) (their nearest
+  // corners are 2.55 and 2.92 dX away): 18.435, 33.690 and their complements. The thesis' printed
+  // 30.964 deg (tan = 3/5) belongs to no m = 3 family; it first appears at m = 6 (vector (5,3)).
+  auto near = [](const std::vector<double>& got, const std::vector<double>& want) {
+    ASSERT_EQ(got.size(), want.size());
+    for (std::size_t k = 0; k < want.size(); ++k) EXPECT_NEAR(got[k], want[k], 1e-3) << k;
+  };
+  near(weak_directions_deg(3.0, "pa_pdlammps"), {0.0, 26.565, 45.0, 63.435, 90.0});
+  near(weak_directions_deg(3.0, "ipa_hybrid"),
+       {0.0, 18.435, 26.565, 33.690, 45.0, 56.310, 63.435, 71.565, 90.0});
+  const std::vector<double> m6 = weak_directions_deg(6.0, "pa_pdlammps");
+  EXPECT_TRUE(std::any_of(m6.begin(), m6.end(), [](double a) { return std::abs(a - 30.964) < 1e-3; }));
 }

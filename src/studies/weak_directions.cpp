@@ -1,0 +1,65 @@
+#include "studies/weak_directions.hpp"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "io/deck.hpp"
+#include "model/build_model.hpp"
+
+namespace periadapt {
+
+std::vector<double> weak_directions_deg(double m, const std::string& quadrature) {
+  // A square patch wide enough that its centre node has a full interior family.
+  const int half = static_cast<int>(std::ceil(m)) + 3;
+  const std::string yaml = fmt::format(
+      "model: {{dimension: 2, plane: stress}}\n"
+      "material: {{youngs_modulus: 1.0, density: 1.0, critical_stretch: 0.01}}\n"
+      "discretization: {{spacing: 1.0, horizon_factor: {:.17g}, quadrature: {}, "
+      "body: {{box: {{min: [{}, {}], max: [{}, {}]}}}}}}\n"
+      "solver: {{steps: 1}}\n",
+      m, quadrature, -half - 0.5, -half - 0.5, half + 0.5, half + 0.5);
+  const Model model = build_model(parse_deck(yaml, "weak-directions (built-in)"));
+  const NodeSet& ns = model.nodes;
+  std::size_t centre = 0;
+  for (std::size_t i = 0; i < ns.size(); ++i)
+    if (std::hypot(ns.x[0][i], ns.x[1][i]) < std::hypot(ns.x[0][centre], ns.x[1][centre])) centre = i;
+  std::vector<double> deg;
+  const BondFamilies& bf = model.bonds;
+  for (std::uint64_t k = bf.begin(centre); k < bf.end(centre); ++k) {
+    if (!(bf.beta[k] > 0)) continue;
+    const std::size_t j = bf.neighbor[k];
+    const double dx = std::abs(ns.x[0][j] - ns.x[0][centre]), dy = std::abs(ns.x[1][j] - ns.x[1][centre]);
+    deg.push_back(std::atan2(dy, dx) * 180.0 / M_PI);
+  }
+  std::sort(deg.begin(), deg.end());
+  deg.erase(std::unique(deg.begin(), deg.end(), [](double a, double b) { return b - a < 1e-9; }),
+            deg.end());
+  return deg;
+}
+
+int run_weak_directions_study(const std::string& out_dir) {
+  fmt::print("Thesis 5.2: bond (weak) directions of a regular grid in [0, 90] deg, from the family of "
+             "an interior node\n(thesis, m = 3: 0, 18.435, 26.565, 30.964, 45, 59.036, 63.435, "
+             "71.565, 90; 30.964 and 59.036 are no bond direction of an m = 3 grid)\n");
+  std::ofstream csv;
+  if (!out_dir.empty()) {
+    std::filesystem::create_directories(out_dir);
+    csv.open(out_dir + "/weak_directions.csv");
+    csv << "m,quadrature,count,directions_deg\n";
+  }
+  for (const char* q : {"pa_pdlammps", "ipa_hybrid"})
+    for (double m : {2.51, 3.0, 4.0, 5.0, 6.0, 7.0}) {
+      const std::vector<double> d = weak_directions_deg(m, q);
+      std::string list;
+      for (double a : d) list += fmt::format("{}{:.3f}", list.empty() ? "" : " ", a);
+      fmt::print("m = {:<4} {:<11} {:>3} directions: {}\n", m, q, d.size(), list);
+      if (csv) csv << fmt::format("{},{},{},{}\n", m, q, d.size(), list);
+    }
+  return 0;
+}
+
+}  // namespace periadapt
