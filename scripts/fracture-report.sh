@@ -6,7 +6,7 @@
 # Kalthoff-Winkler 6.2: adaptive level 1, level 2 and the energy trigger alone; 3D branching (end
 # of 6.1): adaptive level 1. Both 2D branching studies also at the printed 22 MPa. Plate with a
 # hole 6.3: models A, B, C (h = 15, 10, 5 mm).
-# Usage: scripts/fracture-report.sh [OUT] (about 20 s on 2 cores).
+# Usage: scripts/fracture-report.sh [OUT] (about 6 min on 2 cores, 3 of them the quasi-static run).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out="${1:-out/report}"
@@ -47,6 +47,34 @@ sed 's/0\.019\]/0.009]/g; s/28\.0e6/22.0e6/' examples/plate_with_hole_2d_adaptiv
 run plate_hole_C examples/plate_with_hole_2d_adaptive.yaml
 run plate_hole_B "$out/plate_with_hole_B.yaml"
 run plate_hole_A "$out/plate_with_hole_A.yaml"
+# Grid orientation, thesis ch. 5: uniform m = 3 on rotated grids (1.6 MPa, see the deck), the
+# 10 deg grid quasi-statically (3 ms ramp to 3 MPa), uniform m = 6 / 7 references and AGRS raising
+# m near the crack (Table 5.1), and the weak bond directions (5.2).
+for a in 0 5 10 20 30 40; do
+  sed -e 's/value: \[0.0, 0.8e6\]/value: [0.0, 1.6e6]/' -e 's/value: \[0.0, -0.8e6\]/value: [0.0, -1.6e6]/' \
+      -e "s/rotation_deg: 0.0/rotation_deg: $a/" -e 's/end_time: 560.0e-6/end_time: 150.0e-6/' \
+      examples/grid_orientation_pmb.yaml > "$out/grid_m3_$a.yaml"
+  run "grid_m3_$a" "$out/grid_m3_$a.yaml"
+done
+sed -e 's/value: \[0.0, 0.8e6\]/value: [0.0, 0.0]/' -e 's/value: \[0.0, -0.8e6\]/value: [0.0, 0.0]/' \
+    -e 's/rotation_deg: 0.0/rotation_deg: 10/' -e 's/end_time: 560.0e-6/end_time: 3.0e-3/' \
+    -e 's/history_every: 20/history_every: 200/' examples/grid_orientation_pmb.yaml \
+  | sed -e '/name: top/,/value/ s/value: \[0.0, 0.0\]/value: [0.0, 3.0e6]\n    time: {function: ramp, start: 0.0, end: 3.0e-3}/' \
+        -e '/name: bottom/,/value/ s/value: \[0.0, 0.0\]/value: [0.0, -3.0e6]\n    time: {function: ramp, start: 0.0, end: 3.0e-3}/' \
+  > "$out/grid_m3_10_quasistatic.yaml"
+run grid_m3_10_quasistatic "$out/grid_m3_10_quasistatic.yaml"
+uniform_of() {  # adaptive deck -> the uniform 1 mm grid with the refined level's m
+  sed -e '/^adapt:/,/^  check_every:/d' -e 's/spacing: 2.0e-3/spacing: 1.0e-3/' -e "s/horizon_factor: [0-9.]*/horizon_factor: $1/"
+}
+uniform_of 6 < examples/grid_orientation_adaptive.yaml > "$out/grid_m6_10.yaml"
+sed -e 's/rotation_deg: 10.0/rotation_deg: 5.0/' -e 's/horizon_factor: 3.0/horizon_factor: 3.5/' \
+  examples/grid_orientation_adaptive.yaml > "$out/grid_adaptive_5.yaml"
+uniform_of 7 < "$out/grid_adaptive_5.yaml" > "$out/grid_m7_5.yaml"
+run grid_m6_10 "$out/grid_m6_10.yaml"
+run grid_adaptive_10 examples/grid_orientation_adaptive.yaml
+run grid_m7_5 "$out/grid_m7_5.yaml"
+run grid_adaptive_5 "$out/grid_adaptive_5.yaml"
+./build/periadapt study weak-directions --out "$out/weak_directions" > "$out/weak_directions.txt"
 num() {  # summary key -> value (first match), "-" when null or absent
   local v
   v=$(grep -m1 "\"$2\"" "$out/$1/summary.json" | sed -E 's/.*: *//; s/,$//')
@@ -139,6 +167,39 @@ row() {  # name label published...
   echo "Thesis: the crack is drawn into the hole for the smallest h and passes it for the largest (Fig. 6.13, as in DYNA3D, Fig. 6.14). Here the hole also cracks from its sides (a 10 mm hole in a 30 mm plate under a step load), which the refinement follows: more refined nodes than published."
   echo
   for n in plate_hole_C plate_hole_B plate_hole_A; do
+    echo "### $n"
+    echo
+    pictures "$n"
+    echo
+  done
+  echo "## Grid orientation (thesis ch. 5, Tables 5.1-5.2)"
+  echo
+  echo "Plate 0.25 x 0.25 m, central 50 mm crack, 1.6 MPa step (the printed 0.8 MPa does not start the crack: static G = 0.68 J/m^2 against G0 = 7), IPA-Hybrid areas. Path angle: from the initial right tip to its last position, from the horizontal."
+  echo
+  echo "| run | grid angle (deg) | dX0 (mm) | m | nodes (initial -> final) | path angle (deg) | wall (s) | thesis (Table 5.2: CPU h, crack) |"
+  echo "|---|---|---|---|---|---|---|---|"
+  go() {  # name angle dx m published
+    echo "| $1 | $2 | $3 | $4 | $(num "$1" initial) -> $(num "$1" final) | $(f2 "$(num "$1" path_angle_deg)") | $(f2 "$(num "$1" wall_time_s)") | $5 |"
+  }
+  for a in 0 5 10 20 30 40; do
+    pub="deviated"; [[ $a == 0 ]] && pub="horizontal"; [[ $a == 5 ]] && pub="0.83 h (1 mm), deviated"
+    go "grid_m3_$a" "$a" 1 3 "$pub"
+  done
+  go grid_m3_10_quasistatic 10 1 3 "deviated (quasi-static, Fig. 5.7)"
+  go grid_m6_10 10 1 6 "16.09 h (0.5 mm), horizontal"
+  go grid_adaptive_10 10 "2 -> 1" "3 -> 6" "3.52 h (2 -> 0.5 mm, two levels), horizontal; 15,600 -> 19,062 nodes (Fig. 5.16)"
+  go grid_m7_5 5 1 7 "2.90 h, horizontal"
+  go grid_adaptive_5 5 "2 -> 1" "3.5 -> 7" "2.20 h, horizontal"
+  echo
+  echo "Adaptive / uniform wall time: 10 deg $(awk -v a="$(num grid_adaptive_10 wall_time_s)" -v u="$(num grid_m6_10 wall_time_s)" 'BEGIN { printf "%.2f", a / u }') (thesis 3.52 / 16.09 = 0.22), 5 deg $(awk -v a="$(num grid_adaptive_5 wall_time_s)" -v u="$(num grid_m7_5 wall_time_s)" 'BEGIN { printf "%.2f", a / u }') (thesis 2.20 / 2.90 = 0.76)."
+  echo
+  echo "Weak (bond) directions, thesis 5.2 (\`periadapt study weak-directions\`; thesis for m = 3: 0, 18.435, 26.565, 30.964, 45, 59.036, 63.435, 71.565, 90):"
+  echo
+  echo '```'
+  grep '^m = ' "$out/weak_directions.txt"
+  echo '```'
+  echo
+  for n in grid_m3_10 grid_m3_10_quasistatic grid_m6_10 grid_adaptive_10 grid_adaptive_5; do
     echo "### $n"
     echo
     pictures "$n"
