@@ -21,6 +21,7 @@
 #include "studies/pdro_disk.hpp"
 #include "studies/static_plate_2d.hpp"
 #include "studies/static_plate_refined.hpp"
+#include "studies/wave_levels_2d.hpp"
 #include "studies/weak_directions.hpp"
 #include "io/deck.hpp"
 #include "io/deck_error.hpp"
@@ -122,7 +123,7 @@ int main(int argc, char** argv) {
       ->required()
       ->check(CLI::IsMember(
           {"bobaru-1d-static", "bobaru-1d-wave", "static-plate-2d", "static-plate-refined",
-           "wave-patch-2d", "pdro-bar", "pdro-sent", "pdro-disk", "weak-directions"}));
+           "wave-patch-2d", "pdro-bar", "pdro-sent", "pdro-disk", "weak-directions", "wave-levels-2d"}));
   study->add_option("--out", out, "directory for the study's CSV files");
   PdroBarOptions bar;
   bool bar_quick = false;
@@ -154,6 +155,7 @@ int main(int argc, char** argv) {
       if (study_name == "wave-patch-2d") return run_wave_patch_study(out);
       if (study_name == "static-plate-refined") return run_static_plate_refined_study(out);
       if (study_name == "weak-directions") return run_weak_directions_study(out);
+      if (study_name == "wave-levels-2d") return run_wave_levels_study(out);
       if (study_name == "pdro-bar") {
         if (bar_quick) bar.targets = {0.9e-3, 0.5e-3, 0.2e-3};
         return run_pdro_bar_study(out, bar);
