@@ -31,6 +31,9 @@ struct BondFamilies {
   std::vector<std::uint64_t> t_offsets;
   std::vector<std::uint32_t> t_owner;
   std::vector<std::uint64_t> t_bond;
+  // Dual-horizon PMB scratch: each membership's force factor from its owner's pass, gathered by
+  // the other end (8 B per bond slot; empty for other forms).
+  std::vector<double> dual_force;
 
   std::size_t num_nodes() const { return offsets.size() - 1; }
   std::size_t num_bonds() const { return live; }

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "material/kernel_dispatch.hpp"
+
 namespace periadapt {
 
 namespace {
@@ -194,24 +196,6 @@ void stiffness_kernel(const NodeSet& ns, const BondFamilies& bf, std::vector<dou
   for (std::size_t i = 0; i < n; ++i) K[i] = stiffness_row<S>(ns, bf, i);
 }
 
-template <template <int, InfluenceShape> class F, class... Args>
-auto dispatch(int dim, InfluenceShape s, Args&&... args) {
-  auto by_shape = [&]<int D>() {
-    switch (s) {
-      case InfluenceShape::Constant:
-        return F<D, InfluenceShape::Constant>::run(std::forward<Args>(args)...);
-      case InfluenceShape::Triangular:
-        return F<D, InfluenceShape::Triangular>::run(std::forward<Args>(args)...);
-      default:
-        return F<D, InfluenceShape::InvertedTriangular>::run(std::forward<Args>(args)...);
-    }
-  };
-  switch (dim) {
-    case 1: return by_shape.template operator()<1>();
-    case 2: return by_shape.template operator()<2>();
-    default: return by_shape.template operator()<3>();
-  }
-}
 
 template <int D, InfluenceShape S>
 struct ForcesOp {

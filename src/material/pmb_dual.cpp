@@ -3,109 +3,135 @@
 #include <algorithm>
 #include <cmath>
 
+#include "material/kernel_dispatch.hpp"
+
 namespace periadapt {
 
 namespace {
 
-inline double shape_g(InfluenceShape s, double t) { return influence(s, t < 1.0 ? t : 1.0); }
+// Raw views of the arrays the pass reads, hoisted so the compiler need not reload them after
+// every store (the force arrays could otherwise alias them).
+struct DualView {
+  const double* y;  // packed current positions and volumes, 4 per node
+  const double* horizon;
+  const double* c;  // micromodulus
+  const std::uint32_t* nb;
+  const double* inv_len;
+  const float* beta;
+};
 
-// Force density on `at` from membership k (owner o, target j): c_o/2 g s beta V_other e.
-inline void membership_force(const NodeSet& ns, const BondFamilies& bf, InfluenceShape shape,
-                             std::uint64_t k, std::size_t owner, std::size_t at, std::size_t other,
-                             double out[3]) {
-  const double* yp = ns.cur.data();
-  double d[3] = {0, 0, 0}, r2 = 0;
-  for (int e = 0; e < ns.dim; ++e) {
-    d[e] = yp[4 * other + e] - yp[4 * at + e];
-    r2 += d[e] * d[e];
+template <int D, InfluenceShape S>
+struct DualForces {
+  // Two passes: each node evaluates its own memberships once (force on itself, and the factor
+  // q = c/2 g s beta / r kept per membership), then gathers the reactions of the memberships that
+  // point at it: q V_owner (y_owner - y_i), instead of evaluating each membership a second time
+  // from the bond's length, beta and the owner's horizon and micromodulus (2x faster here).
+  static std::size_t run(NodeSet& ns, BondFamilies& bf, bool allow_breaking,
+                         std::vector<std::uint64_t>* log, std::vector<double>* Wout) {
+    const std::size_t n = ns.size();
+    const DualView v{ns.cur.data(), ns.horizon.data(), ns.micromodulus.data(), bf.neighbor.data(),
+                     bf.inv_length.data(), bf.beta.data()};
+    const std::uint64_t* begins = bf.offsets.data();
+    const std::uint64_t* ends = bf.row_ends();
+    const std::uint64_t* t_off = bf.t_offsets.data();
+    const std::uint32_t* t_owner = bf.t_owner.data();
+    const std::uint64_t* t_bond = bf.t_bond.data();
+    const std::uint8_t* flags = ns.flags.data();
+    const double* s0s = ns.critical_stretch.data();
+    double* f[3] = {ns.f[0].data(), ns.f[1].data(), ns.f[2].data()};
+    if (bf.dual_force.size() != bf.neighbor.size()) bf.dual_force.assign(bf.neighbor.size(), 0.0);
+    double* fac = bf.dual_force.data();
+    double* W = nullptr;
+    if (Wout) {
+      Wout->assign(n, 0.0);
+      W = Wout->data();
+    }
+    std::vector<std::uint64_t> newly;
+#pragma omp parallel
+    {
+      std::vector<std::uint64_t> mine;
+#pragma omp for schedule(dynamic, 512)
+      for (std::size_t i = 0; i < n; ++i) {
+        if (!(flags[i] & kActive)) {
+          for (std::uint64_t k = begins[i]; k < ends[i]; ++k) fac[k] = 0.0;
+          continue;
+        }
+        const double s0 = (allow_breaking && !(flags[i] & kNoFail)) ? s0s[i] : INFINITY;
+        const double half_c = 0.5 * v.c[i], h = v.horizon[i];
+        double a[3] = {0, 0, 0}, w = 0;
+        for (std::uint64_t k = begins[i]; k < ends[i]; ++k) {
+          fac[k] = 0.0;
+          if (!BondFamilies::intact(v.beta[k])) continue;
+          const std::size_t j = v.nb[k];
+          double d[3] = {0, 0, 0}, r2 = 0;
+          for (int e = 0; e < D; ++e) {
+            d[e] = v.y[4 * j + e] - v.y[4 * i + e];
+            r2 += d[e] * d[e];
+          }
+          const double ail = std::abs(v.inv_len[k]);
+          const double r = std::sqrt(r2);
+          const double s = r * ail - 1.0;
+          // Broken in this pass: no force either way (breaking applied after the pass).
+          if (v.inv_len[k] > 0.0 && s > s0) {
+            mine.push_back(k);
+            continue;
+          }
+          const double g = influence_at<S>(1.0 / (ail * h));
+          const double q = half_c * g * s * static_cast<double>(v.beta[k]) / r;
+          const double fr = q * v.y[4 * j + 3];
+          fac[k] = q;
+          for (int e = 0; e < D; ++e) a[e] += fr * d[e];
+          if (W) w += g * s * s / ail * static_cast<double>(v.beta[k]) * v.y[4 * j + 3];
+        }
+        for (int e = 0; e < D; ++e) f[e][i] = a[e];
+        if (W) W[i] = 0.25 * v.c[i] * w;
+      }
+      // Reactions: every membership (o, k) pointing at i pulls i towards o with o's factor.
+#pragma omp for schedule(dynamic, 512)
+      for (std::size_t i = 0; i < n; ++i) {
+        if (!(flags[i] & kActive)) continue;
+        double a[3];
+        for (int e = 0; e < D; ++e) a[e] = f[e][i];
+        for (std::uint64_t q = t_off[i]; q < t_off[i + 1]; ++q) {
+          const double qk = fac[t_bond[q]];
+          if (qk == 0.0) continue;
+          const std::size_t o = t_owner[q];
+          const double fr = qk * v.y[4 * o + 3];
+          for (int e = 0; e < D; ++e) a[e] += fr * (v.y[4 * o + e] - v.y[4 * i + e]);
+        }
+        for (int e = 0; e < D; ++e) f[e][i] = a[e];
+      }
+#pragma omp critical(pmb_dual_broken)
+      newly.insert(newly.end(), mine.begin(), mine.end());
+    }
+    // Bonds broken in this pass, in a fixed order so the result does not depend on the threads.
+    std::sort(newly.begin(), newly.end());
+    std::vector<std::uint32_t> owner_of;
+    if (!newly.empty()) {
+      owner_of.resize(newly.size());
+      std::size_t o = 0;
+      for (std::size_t q = 0; q < newly.size(); ++q) {
+        while (bf.end(o) <= newly[q]) ++o;
+        owner_of[q] = static_cast<std::uint32_t>(o);
+      }
+    }
+    for (std::size_t q = 0; q < newly.size(); ++q) {
+      const std::uint64_t k = newly[q];
+      const std::size_t i = owner_of[q], j = bf.neighbor[k];
+      ns.broken_weight[i] += static_cast<double>(bf.beta[k]) * ns.volume[j];
+      bf.beta[k] = -bf.beta[k];
+      if (log) log->push_back(k);
+    }
+    return newly.size();
   }
-  const double r = std::sqrt(r2), ail = std::abs(bf.inv_length[k]);
-  const double s = r * ail - 1.0;
-  const double g = shape_g(shape, 1.0 / (ail * ns.horizon[owner]));
-  const double fr = 0.5 * ns.micromodulus[owner] * g * s * static_cast<double>(bf.beta[k]) *
-                    yp[4 * other + 3] / r;
-  for (int e = 0; e < ns.dim; ++e) out[e] = fr * d[e];
-}
+};
 
 }  // namespace
 
 std::size_t pmb_dual_forces(NodeSet& ns, BondFamilies& bf, InfluenceShape shape,
                             bool allow_breaking, std::vector<std::uint64_t>* log,
                             std::vector<double>* Wout) {
-  const std::size_t n = ns.size();
-  const double* yp = ns.cur.data();
-  if (Wout) Wout->assign(n, 0.0);
-  std::vector<std::uint64_t> newly;
-#pragma omp parallel
-  {
-    std::vector<std::uint64_t> mine;
-#pragma omp for schedule(dynamic, 512)
-    for (std::size_t i = 0; i < n; ++i) {
-      if (!(ns.flags[i] & kActive)) continue;
-      const double s0 =
-          (allow_breaking && !(ns.flags[i] & kNoFail)) ? ns.critical_stretch[i] : INFINITY;
-      double a[3] = {0, 0, 0}, w = 0;
-      // Own memberships (j in H(i)): force on i; breaking decided here, applied after the pass.
-      for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {
-        if (!BondFamilies::intact(bf.beta[k])) continue;
-        const std::size_t j = bf.neighbor[k];
-        double r2 = 0;
-        for (int e = 0; e < ns.dim; ++e) {
-          const double t = yp[4 * j + e] - yp[4 * i + e];
-          r2 += t * t;
-        }
-        const double ail = std::abs(bf.inv_length[k]);
-        const double s = std::sqrt(r2) * ail - 1.0;
-        if (bf.inv_length[k] > 0.0 && s > s0) {
-          mine.push_back(k);
-          continue;
-        }
-        double f[3];
-        membership_force(ns, bf, shape, k, i, i, j, f);
-        for (int e = 0; e < ns.dim; ++e) a[e] += f[e];
-        if (Wout) {
-          const double g = shape_g(shape, 1.0 / (ail * ns.horizon[i]));
-          w += g * s * s / ail * static_cast<double>(bf.beta[k]) * yp[4 * j + 3];
-        }
-      }
-      // Memberships of other families pointing at i (dual horizon): the reactions.
-      for (std::uint64_t q = bf.t_offsets[i]; q < bf.t_offsets[i + 1]; ++q) {
-        const std::uint64_t k = bf.t_bond[q];
-        if (!BondFamilies::intact(bf.beta[k])) continue;
-        const std::size_t o = bf.t_owner[q];
-        double f[3];
-        membership_force(ns, bf, shape, k, o, i, o, f);
-        for (int e = 0; e < ns.dim; ++e) a[e] += f[e];
-      }
-      for (int e = 0; e < ns.dim; ++e) ns.f[e][i] = a[e];
-      if (Wout) (*Wout)[i] = 0.25 * ns.micromodulus[i] * w;
-    }
-#pragma omp critical(pmb_dual_broken)
-    newly.insert(newly.end(), mine.begin(), mine.end());
-  }
-  // Bonds broken in this pass: their targets still got the reaction; take it back, in a fixed
-  // order so the result does not depend on the threads.
-  std::sort(newly.begin(), newly.end());
-  std::vector<std::uint32_t> owner_of;
-  if (!newly.empty()) {
-    owner_of.resize(newly.size());
-    std::size_t o = 0;
-    for (std::size_t q = 0; q < newly.size(); ++q) {
-      while (bf.end(o) <= newly[q]) ++o;
-      owner_of[q] = static_cast<std::uint32_t>(o);
-    }
-  }
-  for (std::size_t q = 0; q < newly.size(); ++q) {
-    const std::uint64_t k = newly[q];
-    const std::size_t i = owner_of[q], j = bf.neighbor[k];
-    double f[3];
-    membership_force(ns, bf, shape, k, i, j, i, f);
-    for (int e = 0; e < ns.dim; ++e) ns.f[e][j] -= f[e];
-    ns.broken_weight[i] += static_cast<double>(bf.beta[k]) * ns.volume[j];
-    bf.beta[k] = -bf.beta[k];
-    if (log) log->push_back(k);
-  }
-  return newly.size();
+  return dispatch<DualForces>(ns.dim, shape, ns, bf, allow_breaking, log, Wout);
 }
 
 }  // namespace periadapt
