@@ -14,7 +14,6 @@ inline double g(double t) {
   return influence_at<S>(t);
 }
 
-// E: also the strain-energy density W_i (thesis Eq. 2.14) of the bonds intact after this call.
 struct RowSums {
   double a0, a1, a2, smax;
 };
@@ -79,6 +78,7 @@ inline double row_energy_sum(const double* yp, const std::uint32_t* nbr, const d
   return w;
 }
 
+// E: also the strain-energy density W_i (thesis Eq. 2.14) of the bonds intact after this call.
 template <int D, InfluenceShape S, bool E>
 std::size_t forces_kernel(NodeSet& ns, BondFamilies& bf, bool allow_breaking,
                           std::vector<std::uint64_t>* log, double* W, const PdroSpec* pdro,
@@ -195,7 +195,6 @@ void stiffness_kernel(const NodeSet& ns, const BondFamilies& bf, std::vector<dou
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) K[i] = stiffness_row<S>(ns, bf, i);
 }
-
 
 template <int D, InfluenceShape S>
 struct ForcesOp {
