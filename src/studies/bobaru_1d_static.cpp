@@ -9,6 +9,7 @@
 
 #include "model/model.hpp"
 #include "solver/linear_static.hpp"
+#include "studies/study_csv.hpp"
 
 namespace periadapt {
 
@@ -165,11 +166,8 @@ void bobaru_seven_node_system(std::vector<double>& A, std::vector<double>& rhs) 
 }
 
 int run_bobaru_1d_study(const std::string& out_dir) {
-  std::ofstream csv;
-  if (!out_dir.empty()) {
-    csv.open(out_dir + "/bobaru_1d_static.csv");
-    csv << "table,case,shape,nodes,coarse_horizon,fine_horizon,relative_error_pct,published_pct\n";
-  }
+  std::ofstream csv = open_study_csv(out_dir, "bobaru_1d_static.csv",
+                                     "table,case,shape,nodes,coarse_horizon,fine_horizon,relative_error_pct,published_pct");
   const InfluenceShape shapes[2] = {InfluenceShape::Constant, InfluenceShape::Triangular};
   const char* shape_name[2] = {"constant", "triangular"};
 

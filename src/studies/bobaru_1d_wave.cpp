@@ -12,6 +12,7 @@
 #include "io/deck.hpp"
 #include "model/build_model.hpp"
 #include "solver/velocity_verlet.hpp"
+#include "studies/study_csv.hpp"
 
 namespace periadapt {
 
@@ -111,12 +112,8 @@ int run_bobaru_1d_wave_study(const std::string& out_dir) {
                        {1351, 2.0, 406.80, 0.00991},
                        {2701, 1.5, 403.20, 0.00997},
                        {3001, 1.4, 402.15, 0.00998}};
-  std::ofstream csv;
-  if (!out_dir.empty()) {
-    std::filesystem::create_directories(out_dir);
-    csv.open(out_dir + "/bobaru_1d_wave.csv");
-    csv << "nodes,delta,arrival,amplitude,err_arrival_pct,err_amplitude_pct,pub_arrival,pub_amplitude\n";
-  }
+  std::ofstream csv = open_study_csv(out_dir, "bobaru_1d_wave.csv",
+                                     "nodes,delta,arrival,amplitude,err_arrival_pct,err_amplitude_pct,pub_arrival,pub_amplitude");
   fmt::print("Bobaru et al. 2009, Table IV (uniform grids, triangular micromodulus, peak at x = 400;"
              " exact T = 400, A = 0.01)\n");
   fmt::print("{:>6} {:>6} | {:>9} {:>9} {:>8} | {:>9} {:>9} {:>8} | {:>10} {:>10}\n", "nodes",

@@ -10,6 +10,7 @@
 #include "io/deck.hpp"
 #include "io/line_plot.hpp"
 #include "studies/plate_error_profiles.hpp"
+#include "studies/study_csv.hpp"
 
 namespace periadapt {
 
@@ -29,12 +30,8 @@ int run_static_plate_refined_study(const std::string& out_dir) {
                                {"scaling + DH", "dual_horizon", "false"},
                                {"scaling + DH + surface correction", "dual_horizon", "energy"},
                                {"scaling + DH + moment correction", "dual_horizon", "moments"}};
-  std::ofstream csv;
-  if (!out_dir.empty()) {
-    std::filesystem::create_directories(out_dir);
-    csv.open(out_dir + "/static_plate_refined_errors.csv");
-    csv << "model,level,variant,x_m,error_ux_pct\n";
-  }
+  std::ofstream csv = open_study_csv(out_dir, "static_plate_refined_errors.csv",
+                                     "model,level,variant,x_m,error_ux_pct");
   fmt::print("Thesis 4.1, left half refined (models A-C): |e(u_x)| on the horizontal centre line (%);\n"
              "peak over the coarse side 0.01 <= x <= 0.45 m, plateaus: mean over x in [-0.4, -0.1] (refined) and "
              "[0.1, 0.4] (coarse)\n");

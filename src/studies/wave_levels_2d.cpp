@@ -3,9 +3,8 @@
 #include <fmt/core.h>
 
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 
+#include "studies/study_csv.hpp"
 #include "studies/wave_through_refinement.hpp"
 
 namespace periadapt {
@@ -81,12 +80,8 @@ int run_wave_levels_study(const std::string& out_dir) {
   fmt::print("{:<8} {:>5} {:>7} | {:>8} {:>7} | {:>8} {:>7} | {:>7} {:>7} | {:>10}\n", "conv.",
              "level", "nodes", "dE_min %", "pub.", "dE_max %", "pub.", "du %", "pub.",
              "dE_tot %");
-  std::ofstream csv;
-  if (!out_dir.empty()) {
-    std::filesystem::create_directories(out_dir);
-    csv.open(out_dir + "/wave_levels.csv");
-    csv << "convergence,level,nodes,dE_min_pct,dE_max_pct,du_pct,dE_tot_pct,pub_dE_min,pub_dE_max,pub_du\n";
-  }
+  std::ofstream csv = open_study_csv(out_dir, "wave_levels.csv",
+                                     "convergence,level,nodes,dE_min_pct,dE_max_pct,du_pct,dE_tot_pct,pub_dE_min,pub_dE_max,pub_du");
   for (std::size_t k = 1; k < rows.size(); ++k) {
     const WaveLevelsRow& r = rows[k];
     const double* p = pub[k - 1];

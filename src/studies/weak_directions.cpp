@@ -4,11 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 
 #include "io/deck.hpp"
 #include "model/build_model.hpp"
+#include "studies/study_csv.hpp"
 
 namespace periadapt {
 
@@ -45,12 +44,8 @@ int run_weak_directions_study(const std::string& out_dir) {
   fmt::print("Thesis 5.2: bond (weak) directions of a regular grid in [0, 90] deg, from the family of "
              "an interior node\n(thesis, m = 3: 0, 18.435, 26.565, 30.964, 45, 59.036, 63.435, "
              "71.565, 90; 30.964 and 59.036 are no bond direction of an m = 3 grid)\n");
-  std::ofstream csv;
-  if (!out_dir.empty()) {
-    std::filesystem::create_directories(out_dir);
-    csv.open(out_dir + "/weak_directions.csv");
-    csv << "m,quadrature,count,directions_deg\n";
-  }
+  std::ofstream csv = open_study_csv(out_dir, "weak_directions.csv",
+                                     "m,quadrature,count,directions_deg");
   for (const char* q : {"pa_pdlammps", "ipa_hybrid"})
     for (double m : {2.51, 3.0, 4.0, 5.0, 6.0, 7.0}) {
       const std::vector<double> d = weak_directions_deg(m, q);
