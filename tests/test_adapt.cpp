@@ -190,6 +190,56 @@ TEST(Adapt, RefiningAMirrorSymmetricStateKeepsItSymmetric) {
   EXPECT_LT(worst, 1e-9);
 }
 
+TEST(Adapt, ChildrenAcrossAPreCrackTakeTheFieldOfTheirOwnFace) {
+  // A 10 deg lattice cut by a horizontal pre-crack: where a lattice row crosses the crack line
+  // (every dX / sin 10 deg = 5.8 mm), some sub-cell centres lie on the other side of the crack
+  // from their parent. With the faces pulled apart (u_y, v_y = +-1 above / below the line) each
+  // child must carry its own face's field; anchored at the parent it got the other face's and
+  // tore its bonds apart on the next step. Momentum is kept to round-off either way.
+  Model m = build_model(test::deck_from(
+      "model: {dimension: 2, plane: stress}\n"
+      "material: {youngs_modulus: 72.0e9, density: 2440, fracture_energy: 135}\n"
+      "discretization: {spacing: 0.001, horizon_factor: 3, rotation_deg: 10, body: {box: {min: "
+      "[-0.02, -0.01], max: [0.02, 0.01]}}}\n"
+      "cracks: [{segment: [[-0.015, 0.0], [0.015, 0.0]]}]\n"
+      "solver: {time_step: 5.0e-8, steps: 10}\n"));
+  NodeSet& ns = m.nodes;
+  for (std::size_t i = 0; i < ns.size(); ++i) {
+    const double side = ns.x[1][i] > 0 ? 1.0 : -1.0;
+    ns.u[1][i] = 1e-6 * side;
+    ns.v[1][i] = side;
+    ns.v[0][i] = 0.5;
+    ns.sync_current(i);
+  }
+  // Parents well inside the crack's span: their visible families lie on one face only.
+  std::vector<std::uint32_t> parents;
+  for (std::uint32_t i = 0; i < ns.size(); ++i)
+    if (std::abs(ns.x[0][i]) < 0.009 && std::abs(ns.x[1][i]) < 0.003) parents.push_back(i);
+  const auto before = momentum_and_kinetic(ns);
+  AdaptSpec spec;
+  spec.enabled = true;
+  const std::size_t n0 = ns.size();
+  const RefineStats st = refine_nodes(m, parents, spec);
+  ASSERT_EQ(st.children, 4 * parents.size());
+  std::size_t across = 0;
+  double worst = 0;
+  for (std::size_t q = n0; q < ns.size(); ++q) {
+    const double side = ns.x[1][q] > 0 ? 1.0 : -1.0;
+    const std::size_t p = static_cast<std::size_t>(ns.parent[q]);
+    if ((ns.x[1][p] > 0) != (side > 0)) ++across;
+    worst = std::max({worst, std::abs(ns.u[1][q] / 1e-6 - side)});
+  }
+  EXPECT_GT(across, 0u);  // the geometry does put children across the line
+  EXPECT_EQ(st.reanchored, across);
+  EXPECT_LT(worst, 1e-9);
+  // The velocity shift that restores momentum is tiny against the face velocity 1.
+  for (std::size_t q = n0; q < ns.size(); ++q)
+    EXPECT_NEAR(ns.v[1][q], ns.x[1][q] > 0 ? 1.0 : -1.0, 0.05);
+  const auto after = momentum_and_kinetic(ns);
+  for (int d = 0; d < 2; ++d)
+    EXPECT_LT(std::abs(after.momentum[d] - before.momentum[d]), 1e-12 * before.momentum_scale);
+}
+
 TEST(Adapt, MethodAKeepsVolumeAndMomentumAndCutsInterfaceCellsByEq34) {
   // A 6 x 6 block of 1 mm parents refined by method A: the 13 x 13 half-spacing lattice over it
   // (169 - 36 = 133 new nodes, the parents kept), total volume unchanged, and the coarse

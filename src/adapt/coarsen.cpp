@@ -62,6 +62,7 @@ RefineStats coarsen_nodes(Model& m, const std::vector<std::uint32_t>& parents) {
   const MomentumAndKinetic before = momentum_and_kinetic(ns);
   st.momentum_before = before.momentum;
   st.kinetic_before = before.kinetic;
+  st.momentum_scale = before.momentum_scale;
   const auto ch = children_of(ns);
   std::vector<char> vanishing(ns.size(), 0);
   for (std::uint32_t p : parents)

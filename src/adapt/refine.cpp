@@ -69,11 +69,26 @@ RefineStats refine_nodes(Model& m, std::vector<std::uint32_t> parents, const Ada
   std::vector<Gradients> gradients(parents.size());
   for (std::size_t k = 0; k < parents.size(); ++k)
     fit_kinematic_gradients(ns, bf, parents[k], gradients[k].g);
+  // Children and their u, v, a, all read from the grid as it was. A child on the far side of a
+  // crack from its parent (a rotated lattice puts sub-cells across a pre-crack line; a run-time
+  // crack can pass through a cell) takes its field from the nearest old node it can see, with
+  // that node's own gradient: anchored at the parent it would get the other crack face's
+  // displacement and tear its new bonds apart (thesis 3.2.4: interpolate from visible nodes).
+  struct Child {
+    std::uint32_t parent;
+    Vec3 pos;
+    double u[3], v[3], a[3];
+    bool reanchored;
+  };
+  std::vector<Child> kids;
+  kids.reserve(parents.size() * static_cast<std::size_t>(nchild));
+  std::vector<std::size_t> first_kid(parents.size() + 1, 0);
   for (std::size_t pk = 0; pk < parents.size(); ++pk) {
+    first_kid[pk] = kids.size();
     const std::uint32_t p = parents[pk];
     const auto& G = gradients[pk].g;
     const double h = ns.spacing[p];
-    const int level = ns.level[p] + 1;
+    const Vec3 xp{ns.x[0][p], ns.x[1][p], ns.x[2][p]};
     // Sub-cell centres inside the body (a boundary cell of a node-on-edge grid keeps only its
     // inner half or quarter); the parent's volume is shared equally among them.
     std::vector<std::array<double, 3>> offs;
@@ -85,33 +100,41 @@ RefineStats refine_nodes(Model& m, std::vector<std::uint32_t> parents, const Ada
         off[0] = cr * ox - sr * oy;
         off[1] = sr * ox + cr * oy;
       }
-      const Vec3 pos{ns.x[0][p] + off[0], ns.x[1][p] + off[1], ns.x[2][p] + off[2]};
+      const Vec3 pos{xp[0] + off[0], xp[1] + off[1], xp[2] + off[2]};
       if (inside_body(m, pos, h)) offs.push_back(off);
     }
-    if (offs.empty()) continue;  // cannot happen for a node inside the body; keep the parent
     // Children's mean offset: the interpolation is anchored there so that momentum is kept.
     double mean[3] = {0, 0, 0};
     for (const auto& o : offs)
       for (int d = 0; d < D; ++d) mean[d] += o[static_cast<std::size_t>(d)] / offs.size();
     for (const auto& off : offs) {
-      const std::size_t q =
-          ns.append({ns.x[0][p] + off[0], ns.x[1][p] + off[1], ns.x[2][p] + off[2]},
-                    ns.volume[p] / static_cast<double>(offs.size()), 0.5 * h);
+      Child c{p, {xp[0] + off[0], xp[1] + off[1], xp[2] + off[2]}, {}, {}, {}, false};
+      double de[3] = {0, 0, 0};
+      for (int e = 0; e < D; ++e) de[e] = off[static_cast<std::size_t>(e)] - mean[e];
+      c.reanchored = interpolate_new_node(m, memory, p, G, de, c.pos, c.u, c.v, c.a);
+      st.reanchored += c.reanchored;
+      kids.push_back(c);
+    }
+  }
+  first_kid[parents.size()] = kids.size();
+
+  for (std::size_t pk = 0; pk < parents.size(); ++pk) {
+    const std::uint32_t p = parents[pk];
+    const std::size_t nk = first_kid[pk + 1] - first_kid[pk];
+    if (nk == 0) continue;  // cannot happen for a node inside the body; keep the parent
+    const double h = ns.spacing[p];
+    const int level = ns.level[p] + 1;
+    for (std::size_t c = first_kid[pk]; c < first_kid[pk + 1]; ++c) {
+      const Child& kid = kids[c];
+      const std::size_t q = ns.append(kid.pos, ns.volume[p] / static_cast<double>(nk), 0.5 * h);
       ns.level[q] = static_cast<std::int8_t>(level);
       ns.parent[q] = static_cast<std::int32_t>(p);
       ns.density[q] = ns.density[p];
       ns.flags[q] = static_cast<std::uint8_t>(kActive | (ns.flags[p] & kNoFail));
       for (int d = 0; d < D; ++d) {
-        double du = 0, dv = 0, da = 0;
-        for (int e = 0; e < D; ++e) {
-          const double de = off[static_cast<std::size_t>(e)] - mean[e];
-          du += G[0][d][e] * de;
-          dv += G[1][d][e] * de;
-          da += G[2][d][e] * de;
-        }
-        ns.u[d][q] = ns.u[d][p] + du;
-        ns.v[d][q] = ns.v[d][p] + dv;
-        ns.a[d][q] = ns.a[d][p] + da;
+        ns.u[d][q] = kid.u[d];
+        ns.v[d][q] = kid.v[d];
+        ns.a[d][q] = kid.a[d];
       }
       ns.horizon[q] = level_horizon(m, spec, level);
       scale_material_to_horizon(m, q);
@@ -120,7 +143,20 @@ RefineStats refine_nodes(Model& m, std::vector<std::uint32_t> parents, const Ada
     ns.flags[p] = static_cast<std::uint8_t>(ns.flags[p] & ~kActive);
     for (int d = 0; d < 3; ++d) ns.v[d][p] = ns.a[d][p] = ns.f[d][p] = 0.0;
     ++st.parents;
-    st.children += offs.size();
+    st.children += nk;
+  }
+  // Re-anchored children carry the other face's velocity, so the parents' momentum is not
+  // reproduced exactly: a uniform velocity shift of all new nodes restores it (as in method A).
+  if (st.reanchored > 0) {
+    double P[3] = {0, 0, 0}, M = 0;
+    for (std::size_t i = 0; i < ns.size(); ++i) {
+      if (!(ns.flags[i] & kActive)) continue;
+      const double mi = ns.density[i] * ns.volume[i];
+      for (int d = 0; d < D; ++d) P[d] += mi * ns.v[d][i];
+      if (i >= n0) M += mi;
+    }
+    for (std::size_t q = n0; q < ns.size(); ++q)
+      for (int d = 0; d < D; ++d) ns.v[d][q] += (st.momentum_before[d] - P[d]) / M;
   }
 
   if (inherit_boundary) inherit_loads_and_motions(m, n0, is_parent, false);

@@ -22,9 +22,11 @@ namespace periadapt {
 struct RefineStats {
   std::size_t parents = 0;
   std::size_t children = 0;
+  std::size_t reanchored = 0;  // children interpolated from a node other than their parent
   std::array<double, 3> momentum_before{0, 0, 0};
   std::array<double, 3> momentum_after{0, 0, 0};
   double kinetic_before = 0, kinetic_after = 0;
+  double momentum_scale = 0;  // sum of m |v| before the event
   double seconds = 0;
   std::vector<std::uint32_t> rebuilt;  // nodes whose families were searched again
 };

@@ -16,6 +16,7 @@ std::vector<char> begin_refinement(Model& m, std::vector<std::uint32_t>& parents
   const MomentumAndKinetic pk = momentum_and_kinetic(m.nodes);
   st.momentum_before = pk.momentum;
   st.kinetic_before = pk.kinetic;
+  st.momentum_scale = pk.momentum_scale;
   std::vector<char> is_parent(m.nodes.size(), 0);
   for (std::uint32_t p : parents) is_parent[p] = 1;
   return is_parent;
@@ -28,11 +29,65 @@ bool inside_body(const Model& m, const Vec3& pos, double h) {
   return !m.body_clip || m.body_clip->contains(pos, 1e-9 * h);
 }
 
+bool sight_blocked(const Model& m, const CrackMemory& memory, const Vec3& a, const Vec3& b) {
+  for (const PreCrack& c : m.cracks) {
+    const bool crosses = c.planar3d ? bond_crosses_quad(a, b, c.points)
+                                    : bond_crosses_segment(a, b, c.points[0], c.points[1]);
+    if (crosses) return true;
+  }
+  const double len = norm(sub(b, a));
+  for (const Facet& f : memory.facets)
+    if (norm(sub(f.centre(), a)) <= f.reach() + len && f.crossed_by(a, b)) return true;
+  return false;
+}
+
 void fit_kinematic_gradients(const NodeSet& ns, const BondFamilies& bf, std::uint32_t p,
                              double G[3][3][3]) {
   fit_gradient(ns, bf, p, ns.u, G[0]);
   fit_gradient(ns, bf, p, ns.v, G[1]);
   fit_gradient(ns, bf, p, ns.a, G[2]);
+}
+
+bool interpolate_new_node(const Model& m, const CrackMemory& memory, std::uint32_t p,
+                          const double G[3][3][3], const double offset[3], const Vec3& pos,
+                          double u[3], double v[3], double a[3]) {
+  const NodeSet& ns = m.nodes;
+  const BondFamilies& bf = m.bonds;
+  const int D = ns.dim;
+  std::uint32_t anchor = p;
+  const Vec3 xp{ns.x[0][p], ns.x[1][p], ns.x[2][p]};
+  if (sight_blocked(m, memory, xp, pos)) {
+    double best = INFINITY;
+    for (std::uint64_t k = bf.begin(p); k < bf.end(p); ++k) {
+      const std::uint32_t j = bf.neighbor[k];
+      if (!(ns.flags[j] & kActive)) continue;
+      const Vec3 xj{ns.x[0][j], ns.x[1][j], ns.x[2][j]};
+      const double dj = norm(sub(xj, pos));
+      if (dj < best && !sight_blocked(m, memory, xj, pos)) best = dj, anchor = j;
+    }
+  }
+  double Gj[3][3][3];
+  double off[3] = {0, 0, 0};
+  const double (*g)[3][3] = G;
+  if (anchor == p) {
+    for (int e = 0; e < D; ++e) off[e] = offset[e];
+  } else {
+    fit_kinematic_gradients(ns, bf, anchor, Gj);
+    g = Gj;
+    for (int e = 0; e < D; ++e) off[e] = pos[static_cast<std::size_t>(e)] - ns.x[e][anchor];
+  }
+  for (int d = 0; d < 3; ++d) {
+    double du = 0, dv = 0, da = 0;
+    for (int e = 0; e < D; ++e) {
+      du += g[0][d][e] * off[e];
+      dv += g[1][d][e] * off[e];
+      da += g[2][d][e] * off[e];
+    }
+    u[d] = ns.u[d][anchor] + du;
+    v[d] = ns.v[d][anchor] + dv;
+    a[d] = ns.a[d][anchor] + da;
+  }
+  return anchor != p;
 }
 
 void inherit_loads_and_motions(Model& m, std::size_t n0, const std::vector<char>& is_parent,

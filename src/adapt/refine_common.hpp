@@ -23,6 +23,19 @@ bool inside_body(const Model& m, const Vec3& pos, double h);
 void fit_kinematic_gradients(const NodeSet& ns, const BondFamilies& bf, std::uint32_t p,
                              double G[3][3][3]);
 
+// True when the straight line from a to b crosses a pre-crack or one of the facets standing for
+// the broken bonds of the nodes an event removes: a node at b cannot take its field from a.
+bool sight_blocked(const Model& m, const CrackMemory& memory, const Vec3& a, const Vec3& b);
+
+// u, v and a of a new node at `pos` created from parent p (gradients G): the parent's values
+// plus G times `offset` when the node can see its parent; otherwise (the node lies across a crack
+// from it) the values of the nearest old node of the parent's family that it can see, plus that
+// node's own gradient times the distance to it. Returns true in the second case. Reads only
+// nodes that are still active, so call it before any parent is switched off.
+bool interpolate_new_node(const Model& m, const CrackMemory& memory, std::uint32_t p,
+                          const double G[3][3][3], const double offset[3], const Vec3& pos,
+                          double u[3], double v[3], double a[3]);
+
 // Initial refinement: nodes created from a loaded or constrained parent (ns.parent, ids >= n0)
 // join its loads and, when inside the motion's region, its prescribed motions. A refined parent
 // stays in the lists only when it survives (method A).

@@ -73,17 +73,7 @@ RefineStats refine_nodes_method_a(Model& m, std::vector<std::uint32_t> parents,
           });
           if (taken) continue;
           Candidate c{pos, p, {}, {}, {}};
-          for (int d = 0; d < 3; ++d) {
-            double du = 0, dv = 0, da = 0;
-            for (int e = 0; e < D; ++e) {
-              du += G[0][d][e] * off[e];
-              dv += G[1][d][e] * off[e];
-              da += G[2][d][e] * off[e];
-            }
-            c.u[d] = ns.u[d][p] + du;
-            c.v[d] = ns.v[d][p] + dv;
-            c.a[d] = ns.a[d][p] + da;
-          }
+          st.reanchored += interpolate_new_node(m, memory, p, G, off, pos, c.u, c.v, c.a);
           cand.push_back(c);
         }
   }

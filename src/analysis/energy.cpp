@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <vector>
 
 #include "solver/internal_forces.hpp"
@@ -26,10 +27,10 @@ double strain_energy(const Model& model, std::vector<double>& W) {
 MomentumAndKinetic momentum_and_kinetic(const NodeSet& ns) {
   constexpr std::size_t kBlock = 4096;
   const std::size_t n = ns.size(), nb = (n + kBlock - 1) / kBlock;
-  std::vector<std::array<double, 4>> part(nb, {0, 0, 0, 0});
+  std::vector<std::array<double, 5>> part(nb, {0, 0, 0, 0, 0});
 #pragma omp parallel for schedule(static)
   for (std::size_t b = 0; b < nb; ++b) {
-    std::array<double, 4> s{0, 0, 0, 0};
+    std::array<double, 5> s{0, 0, 0, 0, 0};
     for (std::size_t i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i) {
       if (!(ns.flags[i] & kActive)) continue;
       const double mass = ns.density[i] * ns.volume[i];
@@ -39,6 +40,7 @@ MomentumAndKinetic momentum_and_kinetic(const NodeSet& ns) {
         v2 += ns.v[d][i] * ns.v[d][i];
       }
       s[3] += 0.5 * mass * v2;
+      s[4] += mass * std::sqrt(v2);
     }
     part[b] = s;
   }
@@ -46,6 +48,7 @@ MomentumAndKinetic momentum_and_kinetic(const NodeSet& ns) {
   for (const auto& s : part) {
     for (int d = 0; d < 3; ++d) r.momentum[static_cast<std::size_t>(d)] += s[static_cast<std::size_t>(d)];
     r.kinetic += s[3];
+    r.momentum_scale += s[4];
   }
   return r;
 }

@@ -17,6 +17,7 @@ std::array<double, 3> linear_momentum(const NodeSet& nodes);
 struct MomentumAndKinetic {
   std::array<double, 3> momentum{0, 0, 0};
   double kinetic = 0;
+  double momentum_scale = 0;  // sum of m |v|: the yardstick for momentum changes (|p| may be 0)
 };
 // Both in one parallel pass, summed in fixed blocks combined in order: the same bits for any
 // number of threads. kinetic_energy and linear_momentum are its two halves.

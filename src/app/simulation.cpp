@@ -216,12 +216,11 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
     for (; events_logged < evs.size(); ++events_logged) {
       const RefinementEvent& e = evs[events_logged];
       adapt_seconds += e.stats.seconds;
-      double dp = 0, p = 0;
-      for (int d = 0; d < 3; ++d) {
+      // |p_after - p_before| against sum m|v|: the net momentum of a symmetric problem is ~0.
+      double dp = 0;
+      for (int d = 0; d < 3; ++d)
         dp += std::pow(e.stats.momentum_after[d] - e.stats.momentum_before[d], 2);
-        p += std::pow(e.stats.momentum_before[d], 2);
-      }
-      const double rel = p > 0 ? std::sqrt(dp / p) : std::sqrt(dp);
+      const double rel = e.stats.momentum_scale > 0 ? std::sqrt(dp) / e.stats.momentum_scale : std::sqrt(dp);
       if (refinement_log)
         refinement_log << fmt::format("{},{:.9e},{},{},{},{},{},{},{:.3e},{:.9e},{:.9e},{:.6e},{:.4f}\n",
                                       e.step, e.time, e.trigger, e.identified, e.stats.parents,
