@@ -75,6 +75,11 @@ run grid_m6_10 "$out/grid_m6_10.yaml"
 run grid_adaptive_10 examples/grid_orientation_adaptive.yaml
 run grid_m7_5 "$out/grid_m7_5.yaml"
 run grid_adaptive_5 "$out/grid_adaptive_5.yaml"
+# delta-m, two levels (Table 5.1 third row, Fig. 5.17) against the uniform 0.5 mm, m = 6 grid.
+sed -e '/^adapt:/,/^  check_every:/d' -e 's/spacing: 2.0e-3/spacing: 0.5e-3/' -e 's/horizon_factor: 3.0/horizon_factor: 6.0/' \
+  examples/grid_orientation_adaptive_dm.yaml > "$out/grid_m6_05_10.yaml"
+run grid_m6_05_10 "$out/grid_m6_05_10.yaml"
+run grid_adaptive_dm_10 examples/grid_orientation_adaptive_dm.yaml
 ./build/periadapt study weak-directions --out "$out/weak_directions" > "$out/weak_directions.txt"
 num() {  # summary key -> value (first match), "-" when null or absent
   local v
@@ -187,12 +192,15 @@ row() {  # name label published...
     go "grid_m3_$a" "$a" 1 3 "$pub"
   done
   go grid_m3_10_quasistatic 10 1 3 "deviated (quasi-static, Fig. 5.7)"
-  go grid_m6_10 10 1 6 "16.09 h (0.5 mm), horizontal"
-  go grid_adaptive_10 10 "2 -> 1" "3 -> 6" "3.52 h (2 -> 0.5 mm, two levels), horizontal; 15,600 -> 19,062 nodes (Fig. 5.16)"
+  go grid_m6_10 10 1 6 "horizontal; 62,502 nodes (Fig. 5.16a)"
+  go grid_adaptive_10 10 "2 -> 1" "3 -> 6 (m)" "horizontal; 15,600 -> 19,062 nodes (Fig. 5.16b)"
+  go grid_m6_05_10 10 0.5 6 "16.09 h, horizontal; 250,002 nodes (Fig. 5.17a)"
+  go grid_adaptive_dm_10 10 "2 -> 0.5" "3 -> 4.5 -> 6 (delta-m)" "3.52 h, horizontal; 15,600 -> 26,778 nodes (Fig. 5.17b)"
   go grid_m7_5 5 1 7 "2.90 h, horizontal"
-  go grid_adaptive_5 5 "2 -> 1" "3.5 -> 7" "2.20 h, horizontal"
+  go grid_adaptive_5 5 "2 -> 1" "3.5 -> 7 (m)" "2.20 h, horizontal"
   echo
-  echo "Adaptive / uniform wall time: 10 deg $(awk -v a="$(num grid_adaptive_10 wall_time_s)" -v u="$(num grid_m6_10 wall_time_s)" 'BEGIN { printf "%.2f", a / u }') (thesis 3.52 / 16.09 = 0.22), 5 deg $(awk -v a="$(num grid_adaptive_5 wall_time_s)" -v u="$(num grid_m7_5 wall_time_s)" 'BEGIN { printf "%.2f", a / u }') (thesis 2.20 / 2.90 = 0.76)."
+  ratio() { awk -v a="$(num "$1" "$3")" -v u="$(num "$2" "$3")" 'BEGIN { printf "%.2f", a / u }'; }
+  echo "Adaptive / uniform: 10 deg m-convergence: nodes $(ratio grid_adaptive_10 grid_m6_10 final), wall $(ratio grid_adaptive_10 grid_m6_10 wall_time_s) (thesis: nodes 19,062 / 62,502 = 0.30); 10 deg delta-m: nodes $(ratio grid_adaptive_dm_10 grid_m6_05_10 final), wall $(ratio grid_adaptive_dm_10 grid_m6_05_10 wall_time_s) (thesis 26,778 / 250,002 = 0.11 nodes, 3.52 / 16.09 h = 0.22 wall); 5 deg: nodes $(ratio grid_adaptive_5 grid_m7_5 final), wall $(ratio grid_adaptive_5 grid_m7_5 wall_time_s) (thesis 2.20 / 2.90 h = 0.76)."
   echo
   echo "Weak (bond) directions, thesis 5.2 (\`periadapt study weak-directions\`; thesis for m = 3: 0, 18.435, 26.565, 30.964, 45, 59.036, 63.435, 71.565, 90):"
   echo
@@ -200,7 +208,7 @@ row() {  # name label published...
   grep '^m = ' "$out/weak_directions.txt"
   echo '```'
   echo
-  for n in grid_m3_10 grid_m3_10_quasistatic grid_m6_10 grid_adaptive_10 grid_adaptive_5; do
+  for n in grid_m3_10 grid_m3_10_quasistatic grid_m6_10 grid_adaptive_10 grid_m6_05_10 grid_adaptive_dm_10 grid_adaptive_5; do
     echo "### $n"
     echo
     pictures "$n"
