@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "analysis/crack_tip.hpp"
+#include "analysis/refinement_coverage.hpp"
 
 using namespace periadapt;
 
@@ -75,4 +76,25 @@ TEST(CrackTip, MirrorAsymmetryIsTheHausdorffDistanceBetweenTheMirroredBranches) 
   EXPECT_NEAR(*tr.mirror_asymmetry(ns), 0.0, 1e-15);
   ns.x[1][last_up] += 0.3;
   EXPECT_NEAR(*tr.mirror_asymmetry(ns), 0.3, 1e-12);
+}
+
+TEST(RefinementCoverage, CountsRefinedNodesAwayFromCracksAndCracksLeftCoarse) {
+  // A row x = 0.5 ... 9.5: cracked nodes at 0.5 and 1.5 (the first coarse, the second refined),
+  // refined nodes at 2.5 (1 from a crack), 4.5 (3 away) and 8.5 (7 away). Within radius 2 only
+  // 4.5 and 8.5 are far; an inactive refined node (a switched-off parent's stand-in) is ignored.
+  NodeSet ns = row();
+  ns.broken_weight[0] = ns.broken_weight[1] = 0.5;
+  for (std::size_t i : {1u, 2u, 4u, 8u}) ns.level[i] = 1;
+  ns.level[9] = 1;
+  ns.flags[9] = 0;
+  const RefinementCoverage c = refinement_coverage(ns, 0.35, 2.0);
+  EXPECT_EQ(c.refined, 4u);
+  EXPECT_EQ(c.refined_far_from_cracks, 2u);
+  EXPECT_EQ(c.cracked, 2u);
+  EXPECT_EQ(c.cracked_coarse, 1u);
+  // Without cracks every refined node is far from them.
+  for (double& w : ns.broken_weight) w = 0;
+  const RefinementCoverage none = refinement_coverage(ns, 0.35, 2.0);
+  EXPECT_EQ(none.refined_far_from_cracks, 4u);
+  EXPECT_EQ(none.cracked, 0u);
 }

@@ -18,6 +18,7 @@
 
 #include "analysis/crack_tip.hpp"
 #include "analysis/energy.hpp"
+#include "analysis/refinement_coverage.hpp"
 #include "app/progress.hpp"
 #include "io/damage_png.hpp"
 #include "io/deck_error.hpp"
@@ -313,6 +314,12 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
                   {"nodes_removed", adaptor->nodes_removed()},
                   {"finest_level", top},
                   {"refinement_wall_s", adapt_seconds}};
+    // Coverage of the cracks by the refined zone, within one coarse horizon.
+    const RefinementCoverage cov = refinement_coverage(ns, tip.threshold, m.horizon);
+    j["adapt"]["refined_nodes"] = cov.refined;
+    j["adapt"]["refined_far_from_cracks"] = cov.refined_far_from_cracks;
+    j["adapt"]["cracked_nodes"] = cov.cracked;
+    j["adapt"]["cracked_coarse_nodes"] = cov.cracked_coarse;
     j["nodes"]["active"] = active_count(ns);
   }
   j["energy"] = {{"kinetic_J", K}, {"strain_J", U}, {"external_work_J", vv.external_work()}};
