@@ -78,6 +78,37 @@ TEST(CrackTip, MirrorAsymmetryIsTheHausdorffDistanceBetweenTheMirroredBranches) 
   EXPECT_NEAR(*tr.mirror_asymmetry(ns), 0.3, 1e-12);
 }
 
+TEST(CrackTip, BranchingIsTracedBackToTheForkAndTimedWhenTheTipPassedIt) {
+  // A crack along y = 0 (x = 0.5 ... 4.5, spacing 1) that forks into two 45-deg branches, nodes
+  // (4.5 + k, +-k), k = 1..4. The front is at x = 4.5 + t at time t. The branches are more than
+  // branch_gap = 5 apart first at x = 7.5 (gap 6, t = 3: the separation); cross-sections
+  // x = 6.5 and 5.5 still show two bands (gaps 4 and 2 > 1.5 spacings), x = 4.5 one: the fork is
+  // at the start of the x = 5.5 column, 5.0, and the tip passed it at t = 1.
+  NodeSet ns;
+  ns.dim = 2;
+  auto add = [&](double x, double y) { ns.family_weight[ns.append({x, y, 0.0}, 1.0, 1.0)] = 1.0; };
+  for (int k = 0; k < 5; ++k) add(0.5 + k, 0.0);
+  for (int k = 1; k <= 4; ++k) add(4.5 + k, k), add(4.5 + k, -k);
+  CrackTipOptions o;
+  o.origin = {0.0, 0.0, 0.0};
+  o.direction = {1.0, 0.0, 0.0};
+  o.advance = 1.0;
+  o.column = 1.0;
+  o.branch_gap = 5.0;
+  o.link = 1.5;  // branch nodes are 1.41 apart
+  o.seed_radius = 1.0;
+  CrackTipTracker tr(o);
+  for (int t = 0; t <= 5; ++t) {
+    for (std::size_t i = 0; i < ns.size(); ++i) ns.broken_weight[i] = ns.x[0][i] <= 4.5 + t ? 0.5 : 0.0;
+    tr.observe(ns, t);
+  }
+  ASSERT_TRUE(tr.branching_time() && tr.separation_time());
+  EXPECT_DOUBLE_EQ(*tr.separation_time(), 3.0);
+  EXPECT_DOUBLE_EQ((*tr.separation_point())[0], 7.5);
+  EXPECT_DOUBLE_EQ((*tr.branching_point())[0], 5.0);
+  EXPECT_DOUBLE_EQ(*tr.branching_time(), 1.0);
+}
+
 TEST(RefinementCoverage, CountsRefinedNodesAwayFromCracksAndCracksLeftCoarse) {
   // A row x = 0.5 ... 9.5: cracked nodes at 0.5 and 1.5 (the first coarse, the second refined),
   // refined nodes at 2.5 (1 from a crack), 4.5 (3 away) and 8.5 (7 away). Within radius 2 only

@@ -87,24 +87,47 @@ void CrackTipTracker::detect_branching(const NodeSet& ns, const std::vector<std:
   if (ns.dim < 2 || opt_.column <= 0 || opt_.branch_gap <= 0) return;
   const Vec3 dir = opt_.direction;
   const Vec3 nrm = transverse_of(dir);
-  // Cross-sections ahead of the initial tip: transverse coordinates of the crack's nodes.
-  std::map<long, std::vector<double>> columns;
+  // Cross-sections ahead of the initial tip: (transverse coordinate, node spacing) of the crack's
+  // nodes.
+  std::map<long, std::vector<std::array<double, 2>>> columns;
   for (std::uint32_t i : crack) {
     const Vec3 r = sub({ns.x[0][i], ns.x[1][i], ns.x[2][i]}, opt_.origin);
     const double adv = dot(r, dir);
     if (adv <= 0) continue;
-    columns[static_cast<long>(std::floor(adv / opt_.column))].push_back(dot(r, nrm));
+    columns[static_cast<long>(std::floor(adv / opt_.column))].push_back({dot(r, nrm), ns.spacing[i]});
   }
-  for (auto& [col, tr] : columns) {
-    std::sort(tr.begin(), tr.end());
-    for (std::size_t k = 1; k < tr.size(); ++k) {
-      if (tr[k] - tr[k - 1] > opt_.branch_gap) {
-        branching_time_ = t;
-        const double adv = (static_cast<double>(col) + 0.5) * opt_.column;
-        branching_point_ = add(opt_.origin, scale(dir, adv));
-        return;
-      }
+  for (auto& [col, tr] : columns) std::sort(tr.begin(), tr.end());
+  // Two bands at least one undamaged node apart: a gap wider than 1.5 local spacings (a band's
+  // own nodes are at most one spacing apart across it).
+  auto two_bands = [](const std::vector<std::array<double, 2>>& tr) {
+    for (std::size_t k = 1; k < tr.size(); ++k)
+      if (tr[k][0] - tr[k - 1][0] > 1.5 * std::max(tr[k][1], tr[k - 1][1])) return true;
+    return false;
+  };
+  for (const auto& [col, tr] : columns) {
+    bool apart = false;
+    for (std::size_t k = 1; k < tr.size() && !apart; ++k) apart = tr[k][0] - tr[k - 1][0] > opt_.branch_gap;
+    if (!apart) continue;
+    // Branches a gap apart (robust against holes in one band); the fork lies upstream, where the
+    // contiguous run of two-band cross-sections ending here begins. The crack branched when its
+    // tip passed the fork.
+    separation_time_ = t;
+    separation_point_ = add(opt_.origin, scale(dir, (static_cast<double>(col) + 0.5) * opt_.column));
+    long first = col;
+    for (auto it = columns.find(col); it != columns.begin();) {
+      --it;
+      if (it->first != first - 1 || !two_bands(it->second)) break;
+      first = it->first;
     }
+    const double fork = static_cast<double>(first) * opt_.column;
+    branching_point_ = add(opt_.origin, scale(dir, fork));
+    branching_time_ = t;
+    for (const TipSample& s : samples_)
+      if (s.advance >= fork) {
+        branching_time_ = s.time;
+        break;
+      }
+    return;
   }
 }
 

@@ -2,7 +2,8 @@
 // Crack-tip tracking (Ha & Bobaru; thesis 6.1): the tip is the damaged node (damage above a
 // threshold, default 0.35) farthest ahead along the crack direction; tip speed by Eq. 6.1 over
 // fixed time windows. Also detects branching: a cross-section of the damaged zone, normal to the
-// crack direction, that splits into two bands separated by more than a gap.
+// crack direction, that splits into two bands separated by more than a gap, traced back to the
+// fork.
 #include <array>
 #include <optional>
 #include <vector>
@@ -44,8 +45,12 @@ class CrackTipTracker {
   // First time the tip lies ahead of the origin at all (the thesis' "crack starts propagating":
   // a node past the pre-crack end is cracked); initiation_time() asks for `advance` more.
   std::optional<double> first_advance_time() const { return first_advance_; }
+  // Branching: the fork (where the crack splits into two bands) and the time its tip passed it;
+  // detected once two bands lie more than branch_gap apart, which is the separation point/time.
   std::optional<double> branching_time() const { return branching_time_; }
   std::optional<Vec3> branching_point() const { return branching_point_; }
+  std::optional<double> separation_time() const { return separation_time_; }
+  std::optional<Vec3> separation_point() const { return separation_point_; }
 
   const std::vector<TipSample>& path() const { return samples_; }
   // Window speeds (t_mid, v) over the whole run.
@@ -70,6 +75,8 @@ class CrackTipTracker {
   std::optional<double> first_advance_;
   std::optional<double> branching_time_;
   std::optional<Vec3> branching_point_;
+  std::optional<double> separation_time_;
+  std::optional<Vec3> separation_point_;
 };
 
 }  // namespace periadapt

@@ -351,6 +351,8 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
                                     : nlohmann::json(nullptr);
     if (tracker.branching_point()) {
       c["branch_length_m"] = norm(sub(*tracker.branching_point(), tip.origin));
+      c["branch_separation_time_s"] = *tracker.separation_time();
+      c["branch_separation_length_m"] = norm(sub(*tracker.separation_point(), tip.origin));
       const std::optional<double> asym = tracker.mirror_asymmetry(ns);
       c["branch_asymmetry_m"] = asym ? nlohmann::json(*asym) : nlohmann::json(nullptr);
     }
