@@ -1,16 +1,16 @@
 #!/usr/bin/env bash
 # Crack-path angle versus grid orientation (thesis 5.1.1) for the bond-based deck
-# examples/grid_orientation_pmb.yaml, grids rotated by 0, 5, 10, 20, 30, 40 deg.
-# The thesis prints 0.8 MPa; with s0 = 2.107e-4 (G0 = 7 J/m^2) that load cannot start the crack
-# (static G = 0.68 J/m^2), so the sweep uses LOAD (default 1.6 MPa, a single running crack).
+# examples/grid_orientation_pmb.yaml, grids rotated by 0, 5, 10, 20, 30, 40 deg, at the printed
+# load (0.8 MPa, 560 us) unless LOAD_PA / END_TIME_S say otherwise.
 # Usage: examples/run_grid_orientation.sh [LOAD_PA] [END_TIME_S] [OUT] [DECK]
-#   DECK = examples/grid_orientation_lps.yaml sweeps the state-based case (printed load 0.7 MPa;
-#   1.0e6 runs a single crack).
+#   DECK = examples/grid_orientation_lps.yaml sweeps the state-based case (printed load 0.7 MPa,
+#   400 us).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-load="${1:-1.6e6}"; end="${2:-250.0e-6}"; out="${3:-out/grid_orientation}"
 deck="${4:-examples/grid_orientation_pmb.yaml}"
 printed=$(grep -m1 -o 'value: \[0.0, [0-9.e]*\]' "$deck" | sed -E 's/.*, ([0-9.e]+)\]/\1/')
+load="${1:-$printed}"; out="${3:-out/grid_orientation}"
+end="${2:-$(grep -m1 'end_time:' "$deck" | awk '{ print $2 }')}"
 mkdir -p "$out"
 echo "| grid angle (deg) | crack path angle (deg) | initiation (us) |"
 echo "|---|---|---|"
