@@ -281,6 +281,7 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
   j["solver_time_s"] = solver_seconds;
   j["wall_time_s"] = wall;
   j["bond_evals_per_s"] = solver_seconds > 0 ? vv.bond_evaluations() / solver_seconds : 0.0;
+  j["bond_evaluations"] = vv.bond_evaluations();
   {
     // Resident memory of the model arrays, per bond and per node, and the process peak (which
     // also holds the transient family-build buffers and output buffers).
