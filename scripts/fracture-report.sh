@@ -6,7 +6,7 @@
 # Kalthoff-Winkler 6.2: adaptive level 1, level 2 and the energy trigger alone; 3D branching (end
 # of 6.1): adaptive level 1. Both 2D branching studies also at the printed 22 MPa. Plate with a
 # hole 6.3: models A, B, C (h = 15, 10, 5 mm).
-# Usage: scripts/fracture-report.sh [OUT] (about 30 min on 2 cores, half of it the uniform 0.5 mm
+# Usage: scripts/fracture-report.sh [OUT] (about 17 min on 2 cores, 5 of them the uniform 0.5 mm
 # m = 6 grid-orientation reference).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -67,6 +67,13 @@ uniform_of() {  # adaptive deck -> the uniform 1 mm grid with the refined level'
   sed -e '/^adapt:/,/^  check_every:/d' -e 's/spacing: 2.0e-3/spacing: 1.0e-3/' -e "s/horizon_factor: [0-9.]*/horizon_factor: $1/"
 }
 uniform_of 6 < examples/grid_orientation_adaptive.yaml > "$out/grid_m6_10.yaml"
+uniform_of 5 < examples/grid_orientation_adaptive.yaml > "$out/grid_m5_10.yaml"
+# The state-based (LPS) material on the 10 and 40 deg grids (thesis Fig. 5.3c-d, 0.7 MPa).
+for a in 10 40; do
+  sed "s/rotation_deg: 0.0/rotation_deg: $a/" examples/grid_orientation_lps.yaml > "$out/grid_lps_$a.yaml"
+  run "grid_lps_$a" "$out/grid_lps_$a.yaml"
+done
+run grid_m5_10 "$out/grid_m5_10.yaml"
 sed -e 's/rotation_deg: 10.0/rotation_deg: 5.0/' -e 's/horizon_factor: 3.0/horizon_factor: 3.5/' \
   examples/grid_orientation_adaptive.yaml > "$out/grid_adaptive_5.yaml"
 uniform_of 7 < "$out/grid_adaptive_5.yaml" > "$out/grid_m7_5.yaml"
@@ -195,6 +202,9 @@ row() {  # name label published...
     go "grid_m3_$a" "$a" 1 3 "$pub"
   done
   go grid_m3_10_quasistatic 10 1 3 "deviated (quasi-static, Fig. 5.7)"
+  go grid_lps_10 10 1 "3 (LPS)" "deviated, like BB (Fig. 5.3c)"
+  go grid_lps_40 40 1 "3 (LPS)" "deviated, like BB (Fig. 5.3d)"
+  go grid_m5_10 10 1 5 "less deviated (Figs. 5.12-5.15: m about 6-7 gives horizontal cracks)"
   go grid_m6_10 10 1 6 "horizontal; 62,502 nodes (Fig. 5.16a)"
   go grid_adaptive_10 10 "2 -> 1" "3 -> 6 (m)" "horizontal; 15,600 -> 19,062 nodes (Fig. 5.16b)"
   go grid_m6_05_10 10 0.5 6 "16.09 h, horizontal; 250,002 nodes (Fig. 5.17a)"
@@ -211,7 +221,7 @@ row() {  # name label published...
   grep '^m = ' "$out/weak_directions.txt"
   echo '```'
   echo
-  for n in grid_m3_10 grid_m3_10_quasistatic grid_m6_10 grid_adaptive_10 grid_m6_05_10 grid_adaptive_dm_10 grid_adaptive_5; do
+  for n in grid_m3_10 grid_m3_10_quasistatic grid_lps_10 grid_m5_10 grid_m6_10 grid_adaptive_10 grid_m6_05_10 grid_adaptive_dm_10 grid_adaptive_5; do
     echo "### $n"
     echo
     pictures "$n"
