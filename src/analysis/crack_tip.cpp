@@ -104,7 +104,8 @@ void CrackTipTracker::detect_branching(const NodeSet& ns, const std::vector<std:
       if (tr[k][0] - tr[k - 1][0] > 1.5 * std::max(tr[k][1], tr[k - 1][1])) return true;
     return false;
   };
-  for (const auto& [col, tr] : columns) {
+  for (auto at = columns.begin(); at != columns.end(); ++at) {
+    const auto& [col, tr] = *at;
     bool apart = false;
     for (std::size_t k = 1; k < tr.size() && !apart; ++k) apart = tr[k][0] - tr[k - 1][0] > opt_.branch_gap;
     if (!apart) continue;
@@ -114,7 +115,7 @@ void CrackTipTracker::detect_branching(const NodeSet& ns, const std::vector<std:
     separation_time_ = t;
     separation_point_ = add(opt_.origin, scale(dir, (static_cast<double>(col) + 0.5) * opt_.column));
     long first = col;
-    for (auto it = columns.find(col); it != columns.begin();) {
+    for (auto it = at; it != columns.begin();) {
       --it;
       if (it->first != first - 1 || !two_bands(it->second)) break;
       first = it->first;
