@@ -9,6 +9,8 @@
 
 #include <fmt/format.h>
 
+#include "io/png_file.hpp"
+
 namespace periadapt {
 
 namespace {
@@ -127,11 +129,14 @@ void write_field_png(const std::string& path, const NodeSet& ns, const std::vect
   cairo_move_to(cr, x0 + len * sc + 8, sy + 4);
   cairo_show_text(cr, (len >= 1 ? fmt::format("{:g} m", len) : fmt::format("{:g} mm", len * 1e3)).c_str());
 
-  cairo_surface_flush(surf);
-  const cairo_status_t st = cairo_surface_write_to_png(surf, path.c_str());
   cairo_destroy(cr);
+  try {
+    write_png_file(surf, path);
+  } catch (...) {
+    cairo_surface_destroy(surf);
+    throw;
+  }
   cairo_surface_destroy(surf);
-  if (st != CAIRO_STATUS_SUCCESS) throw std::runtime_error("cannot write " + path);
 }
 
 }  // namespace periadapt

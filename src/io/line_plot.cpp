@@ -7,6 +7,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "io/png_file.hpp"
+
 namespace periadapt {
 
 namespace {
@@ -106,9 +108,13 @@ void write_line_plot(const std::string& path, const std::vector<PlotSeries>& ser
     cairo_show_text(cr, ps.name.c_str());
   }
   cairo_destroy(cr);
-  const cairo_status_t st = cairo_surface_write_to_png(surf, path.c_str());
+  try {
+    write_png_file(surf, path);
+  } catch (...) {
+    cairo_surface_destroy(surf);
+    throw;
+  }
   cairo_surface_destroy(surf);
-  if (st != CAIRO_STATUS_SUCCESS) throw std::runtime_error("cannot write " + path);
 }
 
 }  // namespace periadapt
