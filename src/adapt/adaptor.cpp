@@ -71,6 +71,14 @@ std::vector<std::uint32_t> Adaptor::parents_for(const std::vector<std::uint32_t>
   return apply_visibility(m_, ids, refinable_nodes(m_, spec_), spec_.visibility_factor);
 }
 
+const std::vector<char>& Adaptor::refinable() {
+  if (!refinable_valid_) {
+    refinable_ = refinable_nodes(m_, spec_);
+    refinable_valid_ = true;
+  }
+  return refinable_;
+}
+
 void Adaptor::refine(const std::vector<std::uint32_t>& parents, std::size_t identified,
                      const char* trigger) {
   if (parents.empty()) return;
@@ -80,6 +88,7 @@ void Adaptor::refine(const std::vector<std::uint32_t>& parents, std::size_t iden
   ev.trigger = trigger;
   ev.identified = identified;
   const double h0 = spec_.conserve_energy ? total_energy() : 0.0;
+  refinable_valid_ = false;
   ev.stats = refine_nodes(m_, parents, spec_);
   if (spec_.conserve_energy) restore_energy(h0, ev.stats.rebuilt);
   std::size_t active = 0;
@@ -138,6 +147,7 @@ bool Adaptor::coarsen_quiet(const std::vector<double>& E, double alpha) {
   ev.trigger = "coarsen";
   ev.identified = quiet.size();
   const double h0 = spec_.conserve_energy ? total_energy() : 0.0;
+  refinable_valid_ = false;
   ev.stats = coarsen_nodes(m_, quiet);
   if (spec_.conserve_energy) restore_energy(h0, ev.stats.rebuilt);
   std::size_t active = 0;
@@ -162,11 +172,9 @@ bool Adaptor::step() {
     vv_.set_undo(true);
     // Each pass refines by at most one level, so max_level + 1 passes always suffice.
     for (int pass = 0;; ++pass) {
-      damage_before_.resize(ns.size());
-      for (std::size_t i = 0; i < ns.size(); ++i) damage_before_[i] = ns.damage(i);
       if (!vv_.step()) return false;
-      const std::vector<char> refinable = refinable_nodes(m_, spec_);
-      const auto ids = damage_trigger(m_, damage_before_, refinable);
+      const std::vector<char>& refinable = this->refinable();
+      const auto ids = damage_trigger(m_, vv_.rows_damaged_by_last_step(), refinable);
       // Damage grew on a node that can still be refined: bonds broke on a coarse level, so the
       // step is undone and redone on the refined grid (thesis Fig. 3.4).
       bool coarse = false;
@@ -203,7 +211,7 @@ bool Adaptor::step() {
         E[i] += 0.5 * ns.density[i] * v2;
       }
     const double alpha = *spec_.energy_fraction;
-    const std::vector<char> refinable = refinable_nodes(m_, spec_);
+    const std::vector<char> refinable = this->refinable();
     const auto ids = energy_trigger(m_, E, alpha, refinable);
     // Coarsening changes which nodes are active: then the flags are taken afresh.
     const bool coarsened = spec_.coarsen && coarsen_quiet(E, alpha);

@@ -55,7 +55,11 @@ class Adaptor {
   VelocityVerlet& vv_;
   AdaptSpec spec_;
   std::vector<RefinementEvent> events_;
-  std::vector<double> W_, damage_before_;
+  // refinable_nodes() of the current node set; it changes only with events.
+  const std::vector<char>& refinable();
+  std::vector<double> W_;
+  std::vector<char> refinable_;
+  bool refinable_valid_ = false;
 };
 
 }  // namespace periadapt

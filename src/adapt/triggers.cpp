@@ -40,13 +40,13 @@ std::vector<std::uint32_t> energy_trigger(const Model& m, const std::vector<doub
   return out;
 }
 
-std::vector<std::uint32_t> damage_trigger(const Model& m, const std::vector<double>& before,
+std::vector<std::uint32_t> damage_trigger(const Model& m, const std::vector<std::uint32_t>& damaged,
                                           const std::vector<char>& refinable) {
   const NodeSet& ns = m.nodes;
   std::vector<std::uint32_t> out;
-  for (std::size_t i = 0; i < before.size() && i < ns.size(); ++i)
-    if ((refinable[i] || ((ns.flags[i] & kActive) && ns.level[i] > 0)) && ns.damage(i) > before[i])
-      out.push_back(static_cast<std::uint32_t>(i));
+  for (std::uint32_t i : damaged)
+    if (i < ns.size() && (refinable[i] || ((ns.flags[i] & kActive) && ns.level[i] > 0)))
+      out.push_back(i);
   return out;
 }
 

@@ -22,8 +22,8 @@ std::vector<char> refinable_nodes(const Model& m, const AdaptSpec& spec);
 std::vector<std::uint32_t> energy_trigger(const Model& m, const std::vector<double>& W,
                                           double alpha, const std::vector<char>& refinable);
 
-// Damage trigger: nodes, refinable or already refined, whose damage grew since `damage_before`.
-std::vector<std::uint32_t> damage_trigger(const Model& m, const std::vector<double>& damage_before,
+// Damage trigger: of the nodes whose damage grew (`damaged`), those refinable or already refined.
+std::vector<std::uint32_t> damage_trigger(const Model& m, const std::vector<std::uint32_t>& damaged,
                                           const std::vector<char>& refinable);
 
 // Visibility: the refinable identified nodes and every refinable node j at the same or a coarser

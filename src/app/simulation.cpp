@@ -129,6 +129,7 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
   std::vector<std::string> pngs;
 
   VelocityVerlet vv(m, ts.dt);
+  if (dk.multirate) vv.set_multirate(dk.safety);
   vv.initialize();
   double solver_seconds = 0;
   std::size_t damaged_nodes = 0;
@@ -136,7 +137,14 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
   Vec3 last_tip{NAN, NAN, NAN};
   double K = 0, U = 0;
 
+  double observe_seconds = 0, output_seconds = 0;  // history/tracker sampling; VTU and PNG files
   auto observe = [&](long step) {
+    const auto t_obs = clock::now();
+    struct AddElapsed {
+      clock::time_point t0;
+      double& acc;
+      ~AddElapsed() { acc += std::chrono::duration<double>(clock::now() - t0).count(); }
+    } obs_timer{t_obs, observe_seconds};
     const double t = vv.time();
     const bool do_hist = step % dk.output.history_every == 0 || step == ts.steps;
     const bool do_vtu = vtu && vtu_steps.count(step);
@@ -172,6 +180,8 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
             active_count(ns), m.bonds.num_bonds(),
             std::chrono::duration<double>(clock::now() - t_start).count());
     }
+    const auto t_out = clock::now();
+    AddElapsed out_timer{t_out, output_seconds};
     if (do_vtu) vtu->write(t, ns, snapshot_fields(m, W));
     if (do_png) {
       std::vector<double> dmg(ns.size());
@@ -279,6 +289,12 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
   j["threads"] = omp_get_max_threads();
   j["setup_time_s"] = t_setup;
   j["solver_time_s"] = solver_seconds;
+  // Inside the run loop, besides the solver: sampling the history (energies, damage, crack tip)
+  // and, part of it, writing the VTU snapshots and PNG pictures.
+  j["sampling_time_s"] = observe_seconds;
+  j["snapshot_output_time_s"] = output_seconds;
+  // Two-rate stepping: how many active nodes ended on the 2 dt rate.
+  if (vv.multirate()) j["multirate_slow_nodes"] = vv.slow_nodes();
   j["wall_time_s"] = wall;
   j["bond_evals_per_s"] = solver_seconds > 0 ? vv.bond_evaluations() / solver_seconds : 0.0;
   j["bond_evaluations"] = vv.bond_evaluations();

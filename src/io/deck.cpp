@@ -351,7 +351,7 @@ Deck parse_deck(const std::string& text, const std::string& name) {
                 : type == "relaxation" ? Deck::SolverType::Relaxation
                                        : Deck::SolverType::Explicit;
     if (dk.solver == Deck::SolverType::Relaxation) {
-      for (const char* k : {"time_step", "end_time", "steps", "safety_factor",
+      for (const char* k : {"time_step", "end_time", "steps", "safety_factor", "multirate",
                             "allow_unstable_time_step"})
         if (s.has(k))
           s.fail(k, "dynamic relaxation has no physical time step; use load_steps, tolerance "
@@ -370,7 +370,7 @@ Deck parse_deck(const std::string& text, const std::string& name) {
         s.fail("type", "the linear static solve assembles the bond-based stiffness; for the LPS "
                        "model use type: relaxation");
       // Linearized equilibrium: no time stepping keys, no bond breaking.
-      for (const char* k : {"time_step", "end_time", "steps", "safety_factor",
+      for (const char* k : {"time_step", "end_time", "steps", "safety_factor", "multirate",
                             "allow_unstable_time_step"})
         if (s.has(k))
           s.fail(k, "a static solve has no time stepping; remove this key or use type: explicit");
@@ -381,6 +381,13 @@ Deck parse_deck(const std::string& text, const std::string& name) {
         return (v > 0 && v <= 1) ? std::string() : std::string("must be in (0, 1]");
       });
       dk.allow_unstable_time_step = s.boolean("allow_unstable_time_step", false);
+      dk.multirate = s.boolean("multirate", false);
+      if (dk.multirate && dk.formulation == "lps")
+        s.fail("multirate", "two-rate stepping needs row-local forces: formulation: pmb (the LPS "
+                            "dilatation couples every node to its neighbours' rows)");
+      if (dk.multirate && !dk.motions.empty())
+        s.fail("multirate", "two-rate stepping does not support prescribed motions "
+                            "(boundary_conditions with velocity or displacement); use loads");
       if (s.has("end_time") == s.has("steps"))
         s.fail("", "give exactly one of end_time (s) or steps");
       if (s.has("end_time")) dk.end_time = s.number("end_time", std::nullopt, positive());
@@ -392,6 +399,9 @@ Deck parse_deck(const std::string& text, const std::string& name) {
     dk.dual_horizon =
         s.choice("bond_pairing", {"source_horizon", "dual_horizon"}, "source_horizon") ==
         "dual_horizon";
+    if (dk.multirate && dk.dual_horizon)
+      s.fail("multirate", "two-rate stepping needs bond_pairing: source_horizon (dual-horizon "
+                          "forces act on both ends of a bond)");
     s.finish();
   }
   if (dk.pdro.enabled && dk.dual_horizon)

@@ -87,6 +87,8 @@ struct Deck {
   std::optional<double> time_step;
   double safety = 0.8;
   bool allow_unstable_time_step = false;
+  // Two-rate stepping: nodes whose own stable step allows 2 dt take it (VelocityVerlet).
+  bool multirate = false;
   double end_time = 0.0;
   std::optional<long> steps;
   AdaptSpec adapt;

@@ -153,9 +153,14 @@ std::size_t forces_kernel(NodeSet& ns, BondFamilies& bf, bool allow_breaking,
 }
 
 template <int D, InfluenceShape S>
-void energy_kernel(const NodeSet& ns, const BondFamilies& bf, double eth, std::vector<double>& W) {
-  const std::size_t n = ns.size();
-  W.assign(n, 0.0);
+void energy_kernel(const NodeSet& ns, const BondFamilies& bf, double eth, std::vector<double>& W,
+                   const std::vector<std::uint32_t>* rows) {
+  const std::size_t n = rows ? rows->size() : ns.size();
+  const std::uint32_t* row = rows ? rows->data() : nullptr;
+  if (rows)
+    W.resize(ns.size(), 0.0);
+  else
+    W.assign(n, 0.0);
   const double* yp = ns.cur.data();
   const std::uint8_t* flags = ns.flags.data();
   const std::uint64_t* off = bf.offsets.data();
@@ -165,8 +170,12 @@ void energy_kernel(const NodeSet& ns, const BondFamilies& bf, double eth, std::v
   const float* beta = bf.beta.data();
   const double one_eth = 1.0 + eth;
 #pragma omp parallel for schedule(dynamic, 512)
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!(flags[i] & kActive)) continue;
+  for (std::size_t r = 0; r < n; ++r) {
+    const std::size_t i = row ? row[r] : r;
+    if (!(flags[i] & kActive)) {
+      W[i] = 0.0;
+      continue;
+    }
     const double yi0 = yp[4 * i];
     const double yi1 = D > 1 ? yp[4 * i + 1] : 0.0;
     const double yi2 = D > 2 ? yp[4 * i + 2] : 0.0;
@@ -207,8 +216,9 @@ struct ForcesOp {
 };
 template <int D, InfluenceShape S>
 struct EnergyOp {
-  static int run(const NodeSet& ns, const BondFamilies& bf, double eth, std::vector<double>& W) {
-    energy_kernel<D, S>(ns, bf, eth, W);
+  static int run(const NodeSet& ns, const BondFamilies& bf, double eth, std::vector<double>& W,
+                 const std::vector<std::uint32_t>* rows) {
+    energy_kernel<D, S>(ns, bf, eth, W, rows);
     return 0;
   }
 };
@@ -248,8 +258,9 @@ PmbStepStats pmb_forces(NodeSet& nodes, BondFamilies& bonds, InfluenceShape shap
 }
 
 void pmb_energy_density(const NodeSet& nodes, const BondFamilies& bonds, InfluenceShape shape,
-                        std::vector<double>& W, double thermal_strain) {
-  dispatch<EnergyOp>(nodes.dim, shape, nodes, bonds, thermal_strain, W);
+                        std::vector<double>& W, double thermal_strain,
+                        const std::vector<std::uint32_t>* rows) {
+  dispatch<EnergyOp>(nodes.dim, shape, nodes, bonds, thermal_strain, W, rows);
 }
 
 void pmb_stiffness_sum(const NodeSet& nodes, const BondFamilies& bonds, InfluenceShape shape,

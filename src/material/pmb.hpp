@@ -33,8 +33,10 @@ PmbStepStats pmb_forces(NodeSet& nodes, BondFamilies& bonds, InfluenceShape shap
                         const std::vector<std::uint32_t>* rows = nullptr);
 
 // Strain-energy density W_i = 1/4 sum_j c_i g s^2 xi beta_j V_j over intact bonds (thesis 2.14).
+// `rows`: only these nodes' densities are computed; the others keep theirs.
 void pmb_energy_density(const NodeSet& nodes, const BondFamilies& bonds, InfluenceShape shape,
-                        std::vector<double>& W, double thermal_strain = 0.0);
+                        std::vector<double>& W, double thermal_strain = 0.0,
+                        const std::vector<std::uint32_t>* rows = nullptr);
 
 // sum_j c_i g beta_j V_j / xi: the stiffness sum of the Silling-Askari stable-step bound.
 void pmb_stiffness_sum(const NodeSet& nodes, const BondFamilies& bonds, InfluenceShape shape,

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
+#include "material/pmb.hpp"
 #include "solver/internal_forces.hpp"
 
 namespace periadapt {
@@ -67,7 +69,41 @@ void VelocityVerlet::request_energy_at(long step) {
     energy_requests_.push_back(step);
 }
 
-void VelocityVerlet::compute_accelerations(const std::vector<std::uint32_t>* rows) {
+void VelocityVerlet::set_multirate(double safety) {
+  if (!forces_are_row_local(m_) || !m_.motions.empty())
+    throw std::invalid_argument(
+        "two-rate stepping needs forces that depend on a node's own bond row (bond-based PMB "
+        "with source-horizon pairing) and no prescribed motions");
+  multirate_ = true;
+  multirate_safety_ = safety;
+}
+
+void VelocityVerlet::classify_rates(const std::vector<std::uint32_t>* rows) {
+  if (!multirate_) return;
+  const NodeSet& ns = m_.nodes;
+  slow_.resize(ns.size(), 0);
+  auto sort_node = [&](std::size_t i, double k) {
+    // k = 0: no intact bonds to be unstable in; a lone node can take any step.
+    slow_[i] = (ns.flags[i] & kActive) &&
+               (!(k > 0) || 2.0 * dt_ <= multirate_safety_ * std::sqrt(2.0 * ns.density[i] / k));
+  };
+  if (rows) {
+    for (std::uint32_t i : *rows)
+      sort_node(i, pmb_stiffness_row(ns, m_.bonds, m_.material.shape, i));
+  } else {
+    std::vector<double> K;
+    pmb_stiffness_sum(ns, m_.bonds, m_.material.shape, K);
+    for (std::size_t i = 0; i < ns.size(); ++i) sort_node(i, K[i]);
+  }
+  fast_rows_.clear();
+  slow_rows_.clear();
+  for (std::size_t i = 0; i < ns.size(); ++i) {
+    if (!(ns.flags[i] & kActive)) continue;
+    (slow_[i] ? slow_rows_ : fast_rows_).push_back(static_cast<std::uint32_t>(i));
+  }
+}
+
+void VelocityVerlet::compute_accelerations(const std::vector<std::uint32_t>* rows, bool subcycle) {
   NodeSet& ns = m_.nodes;
   std::erase_if(energy_requests_, [&](long s) { return s < step_; });
   const bool want_energy =
@@ -77,7 +113,11 @@ void VelocityVerlet::compute_accelerations(const std::vector<std::uint32_t>* row
   // full pass (reactions). Its energy field is complete only if the other rows' densities belong
   // to this very state (computed by this step's pass); else the observers make their own.
   const bool partial = rows && forces_are_row_local(m_) && m_.motions.empty();
-  const bool energy_kept = partial && want_energy && energy_step_ == step_;
+  // A subcycle step: the slow rows' densities at this (drifted) state come from their own pass.
+  const bool energy_kept = partial && want_energy && (subcycle || energy_step_ == step_);
+  if (subcycle && want_energy)
+    pmb_energy_density(ns, m_.bonds, m_.material.shape, energy_, m_.material.thermal_strain,
+                       &slow_rows_);
   energy_step_ = want_energy && (!partial || energy_kept) ? step_ : -1;
   std::vector<std::uint64_t>* log = undo_enabled_ ? &saved_.broken_log : nullptr;
   if (partial) {
@@ -130,6 +170,7 @@ void VelocityVerlet::initialize() {
     v_prev_fixed_[q] = ns.v[fixed_dofs_[q] % 3][fixed_dofs_[q] / 3];
   apply_loads(time_);
   compute_accelerations();
+  classify_rates(nullptr);
   last_power_ = external_power();
 }
 
@@ -137,13 +178,20 @@ void VelocityVerlet::refresh(const std::vector<std::uint32_t>* rows) {
   m_.nodes.sync_all_current();
   apply_loads(time_);
   compute_accelerations(rows);
+  // A node's rate changes only with its row (new nodes, rebuilt families, scaled horizons).
+  if (multirate_) {
+    if (rows)
+      classify_rates(rows);
+    else
+      classify_rates(nullptr);
+  }
   last_power_ = external_power();
 }
 
 void VelocityVerlet::undo_last_step() {
   NodeSet& ns = m_.nodes;
   const std::size_t n = saved_.broken_weight.size();
-  for (int d = 0; d < 3; ++d) {
+  for (int d = 0; d < ns.dim; ++d) {
     std::copy(saved_.u[d].begin(), saved_.u[d].end(), ns.u[d].begin());
     std::copy(saved_.v[d].begin(), saved_.v[d].end(), ns.v[d].begin());
     std::copy(saved_.a[d].begin(), saved_.a[d].end(), ns.a[d].begin());
@@ -162,13 +210,24 @@ void VelocityVerlet::undo_last_step() {
   bond_evals_ = saved_.bond_evals;
 }
 
+std::vector<std::uint32_t> VelocityVerlet::rows_damaged_by_last_step() const {
+  const NodeSet& ns = m_.nodes;
+  std::vector<std::uint32_t> out;
+  const std::size_t n = std::min(saved_.broken_weight.size(), ns.size());
+  for (std::size_t i = 0; i < n; ++i)
+    if (ns.broken_weight[i] > saved_.broken_weight[i] && ns.family_weight[i] > 0)
+      out.push_back(static_cast<std::uint32_t>(i));
+  return out;
+}
+
 bool VelocityVerlet::step() {
   NodeSet& ns = m_.nodes;
   const std::size_t n = ns.size();
   const int dim = ns.dim;
   const double dt = dt_, hdt = 0.5 * dt_;
   if (undo_enabled_) {
-    for (int d = 0; d < 3; ++d) {
+    // Components beyond the model's dimension stay zero: nothing to keep.
+    for (int d = 0; d < dim; ++d) {
       saved_.u[d] = ns.u[d];
       saved_.v[d] = ns.v[d];
       saved_.a[d] = ns.a[d];
@@ -186,30 +245,53 @@ bool VelocityVerlet::step() {
   }
   for (std::size_t q = 0; q < fixed_dofs_.size(); ++q)
     v_prev_fixed_[q] = ns.v[fixed_dofs_[q] % 3][fixed_dofs_[q] / 3];
+  // Two-rate stepping: slow nodes open their 2 dt step on even steps (kick dt, no force pass) and
+  // close it on the odd ones (no opening kick; force pass; kick dt).
+  const bool first_half = multirate_ && step_ % 2 == 0;
 
   // Half-step velocity, then positions; motions with prescribed velocity use v(t + dt/2).
-  for (int d = 0; d < dim; ++d) {
-    double* v = ns.v[d].data();
-    const double* a = ns.a[d].data();
-#pragma omp parallel for schedule(static)
-    for (std::size_t i = 0; i < n; ++i) v[i] += hdt * a[i];
-  }
-  impose_motions(time_ + hdt, true);
+  // Without motions both go in one pass over the nodes (one thread fork per step, not 2 dim).
+  const bool fused = m_.motions.empty();
+  const double lim = runaway_limit_;
   std::size_t bad = n;
-  for (int d = 0; d < dim; ++d) {
-    double* u = ns.u[d].data();
-    double* y = ns.cur.data();
-    const double* x = ns.x[d].data();
-    const double* v = ns.v[d].data();
-    const double lim = runaway_limit_;
+  if (fused) {
     std::size_t first_bad = n;
+    double* y = ns.cur.data();
 #pragma omp parallel for schedule(static) reduction(min : first_bad)
     for (std::size_t i = 0; i < n; ++i) {
-      u[i] += dt * v[i];
-      y[4 * i + d] = x[i] + u[i];
-      if (!(std::abs(u[i]) <= lim)) first_bad = std::min(first_bad, i);
+      const double c = multirate_ ? kick(i, true, first_half) : hdt;
+      for (int d = 0; d < dim; ++d) {
+        const double v = ns.v[d][i] + c * ns.a[d][i];
+        const double u = ns.u[d][i] + dt * v;
+        ns.v[d][i] = v;
+        ns.u[d][i] = u;
+        y[4 * i + d] = ns.x[d][i] + u;
+        if (!(std::abs(u) <= lim)) first_bad = std::min(first_bad, i);
+      }
     }
-    bad = std::min(bad, first_bad);
+    bad = first_bad;
+  } else {
+    for (int d = 0; d < dim; ++d) {
+      double* v = ns.v[d].data();
+      const double* a = ns.a[d].data();
+#pragma omp parallel for schedule(static)
+      for (std::size_t i = 0; i < n; ++i) v[i] += hdt * a[i];
+    }
+    impose_motions(time_ + hdt, true);
+    for (int d = 0; d < dim; ++d) {
+      double* u = ns.u[d].data();
+      double* y = ns.cur.data();
+      const double* x = ns.x[d].data();
+      const double* v = ns.v[d].data();
+      std::size_t first_bad = n;
+#pragma omp parallel for schedule(static) reduction(min : first_bad)
+      for (std::size_t i = 0; i < n; ++i) {
+        u[i] += dt * v[i];
+        y[4 * i + d] = x[i] + u[i];
+        if (!(std::abs(u[i]) <= lim)) first_bad = std::min(first_bad, i);
+      }
+      bad = std::min(bad, first_bad);
+    }
   }
   time_ += dt;
   ++step_;
@@ -226,12 +308,14 @@ bool VelocityVerlet::step() {
   }
 
   apply_loads(time_);
-  compute_accelerations();
-  for (int d = 0; d < dim; ++d) {
-    double* v = ns.v[d].data();
-    const double* a = ns.a[d].data();
+  if (first_half)
+    compute_accelerations(&fast_rows_, true);
+  else
+    compute_accelerations();
 #pragma omp parallel for schedule(static)
-    for (std::size_t i = 0; i < n; ++i) v[i] += hdt * a[i];
+  for (std::size_t i = 0; i < n; ++i) {
+    const double c = multirate_ ? kick(i, false, first_half) : hdt;
+    for (int d = 0; d < dim; ++d) ns.v[d][i] += c * ns.a[d][i];
   }
   impose_motions(time_, true);
   const double p = external_power();

@@ -41,6 +41,8 @@ class VelocityVerlet {
   // step broke.
   void set_undo(bool on) { undo_enabled_ = on; }
   void undo_last_step();
+  // With undo on: the nodes whose damage the last step raised (bonds of their rows broke).
+  std::vector<std::uint32_t> rows_damaged_by_last_step() const;
   // Recomputes loads and accelerations at the current state; call after the grid changed.
   // `rows` (optional): the bond rows the change touched; where a node's force depends on its own
   // row only (plain PMB) just these forces are computed again, the others being unchanged.
@@ -49,6 +51,18 @@ class VelocityVerlet {
   // it) to write every node's strain-energy density on the way: the bond loop then serves both,
   // instead of a second pass over the bonds (history samples, the energy trigger).
   void request_energy_at(long step);
+  // Two-rate stepping (subcycling): every node whose own stable step (Silling-Askari bound of its
+  // row) allows 2 dt with the deck's safety factor advances as one Velocity-Verlet step of 2 dt
+  // over two steps; the others take every step. The slow nodes' positions at the odd steps lie
+  // on their straight drift (what Verlet's drift gives them anyway), so their fast neighbours see
+  // a consistent configuration, and the slow rows' forces are summed on even steps only. Needs
+  // row-local forces (plain PMB) and no prescribed motions. Call before initialize().
+  void set_multirate(double safety);
+  bool multirate() const { return multirate_; }
+  // Active nodes on the 2 dt rate now.
+  std::size_t slow_nodes() const { return slow_rows_.size(); }
+  // Per node: on the 2 dt rate (empty without two-rate stepping).
+  const std::vector<char>& slow_flags() const { return slow_; }
   // The energy densities of the current state when a force pass computed them, else nullptr.
   const std::vector<double>* energy_density_now() const {
     return energy_step_ == step_ && energy_.size() == m_.nodes.size() ? &energy_ : nullptr;
@@ -56,7 +70,15 @@ class VelocityVerlet {
 
  private:
   void apply_loads(double t);
-  void compute_accelerations(const std::vector<std::uint32_t>* rows = nullptr);
+  void compute_accelerations(const std::vector<std::uint32_t>* rows = nullptr,
+                             bool subcycle = false);
+  // Sorts nodes onto the slow or fast rate (all nodes, or the rows an event rebuilt).
+  void classify_rates(const std::vector<std::uint32_t>* rows);
+  // Kick factor of node i: the opening (or closing) half-kick of this step.
+  double kick(std::size_t i, bool opening, bool first_half) const {
+    if (!multirate_ || !slow_[i]) return 0.5 * dt_;
+    return opening == first_half ? dt_ : 0.0;
+  }
   void impose_motions(double t, bool velocities_only);
   double external_power() const;
 
@@ -71,6 +93,10 @@ class VelocityVerlet {
   double runaway_limit_ = 0.0;
   DivergenceError divergence_{};
   bool undo_enabled_ = false;
+  bool multirate_ = false;
+  double multirate_safety_ = 0.8;
+  std::vector<char> slow_;                        // per node: on the 2 dt rate
+  std::vector<std::uint32_t> fast_rows_, slow_rows_;  // active nodes of each rate
   std::vector<long> energy_requests_;  // steps whose force passes also compute energies
   std::vector<double> energy_;
   long energy_step_ = -1;               // the step energy_ belongs to (-1: none)
