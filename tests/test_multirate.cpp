@@ -158,6 +158,11 @@ TEST(Multirate, DecksWhoseForcesAreNotRowLocalAreRefused) {
                    "solver: {time_step: 1e-8, steps: 1, multirate: true, bond_pairing: "
                    "dual_horizon}\n"),
             "solver.multirate");
+  EXPECT_EQ(key_of(head + disc +
+                   "boundary_conditions: [{region: {box: {min: [0, 0], max: [0.001, 0.01]}}, "
+                   "velocity: [0, 0]}]\n"
+                   "solver: {time_step: 1e-8, steps: 1, multirate: true}\n"),
+            "solver.multirate");
   EXPECT_EQ(key_of(head + disc + "solver: {type: static, multirate: true}\n"),
             "solver.multirate");
 }

@@ -103,7 +103,8 @@ void VelocityVerlet::classify_rates(const std::vector<std::uint32_t>* rows) {
   }
 }
 
-void VelocityVerlet::compute_accelerations(const std::vector<std::uint32_t>* rows, bool subcycle) {
+void VelocityVerlet::compute_accelerations(const std::vector<std::uint32_t>* rows, bool subcycle,
+                                           int closing_kick) {
   NodeSet& ns = m_.nodes;
   std::erase_if(energy_requests_, [&](long s) { return s < step_; });
   const bool want_energy =
@@ -131,12 +132,20 @@ void VelocityVerlet::compute_accelerations(const std::vector<std::uint32_t>* row
   const std::size_t n = partial ? rows->size() : ns.size();
   const int dim = ns.dim;
   const bool loaded = !body_[0].empty();
+  // The step's closing half-kick rides along when no constrained component needs its
+  // acceleration zeroed first (the kick of a row left out of a partial pass is zero).
+  const bool kick_here = closing_kick >= 0 && fixed_dofs_.empty();
+  const bool first_half = closing_kick == 1;
 #pragma omp parallel for schedule(static)
   for (std::size_t r = 0; r < n; ++r) {
     const std::size_t i = partial ? (*rows)[r] : r;
     const double inv_rho = 1.0 / ns.density[i];
-    for (int d = 0; d < dim; ++d)
-      ns.a[d][i] = (ns.f[d][i] + (loaded ? body_[d][i] : 0.0)) * inv_rho;
+    const double c = kick_here ? kick(i, false, first_half) : 0.0;
+    for (int d = 0; d < dim; ++d) {
+      const double a = (ns.f[d][i] + (loaded ? body_[d][i] : 0.0)) * inv_rho;
+      ns.a[d][i] = a;
+      if (kick_here) ns.v[d][i] += c * a;
+    }
   }
   // Constrained components follow their prescribed path: record the reaction density needed.
   for (std::size_t q = 0; q < fixed_dofs_.size(); ++q) {
@@ -145,6 +154,13 @@ void VelocityVerlet::compute_accelerations(const std::vector<std::uint32_t>* row
     const double acc = step_ > 0 ? (ns.v[d][i] - v_prev_fixed_[q]) / dt_ : 0.0;
     reaction_[q] = ns.density[i] * acc - ns.f[d][i] - (loaded ? body_[d][i] : 0.0);
     ns.a[d][i] = 0.0;
+  }
+  if (closing_kick >= 0 && !kick_here) {
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < ns.size(); ++i) {
+      const double c = kick(i, false, first_half);
+      for (int d = 0; d < dim; ++d) ns.v[d][i] += c * ns.a[d][i];
+    }
   }
 }
 
@@ -225,12 +241,21 @@ bool VelocityVerlet::step() {
   const std::size_t n = ns.size();
   const int dim = ns.dim;
   const double dt = dt_, hdt = 0.5 * dt_;
+  // Without motions, kicks and drift go in one pass over the nodes (one thread fork per step,
+  // not 2 dim), which also keeps the state an undo needs on the way.
+  const bool fused = m_.motions.empty();
   if (undo_enabled_) {
     // Components beyond the model's dimension stay zero: nothing to keep.
     for (int d = 0; d < dim; ++d) {
-      saved_.u[d] = ns.u[d];
-      saved_.v[d] = ns.v[d];
-      saved_.a[d] = ns.a[d];
+      if (fused) {
+        saved_.u[d].resize(n);
+        saved_.v[d].resize(n);
+        saved_.a[d].resize(n);
+      } else {
+        saved_.u[d] = ns.u[d];
+        saved_.v[d] = ns.v[d];
+        saved_.a[d] = ns.a[d];
+      }
     }
     saved_.broken_weight = ns.broken_weight;
     saved_.v_prev_fixed = v_prev_fixed_;
@@ -250,17 +275,21 @@ bool VelocityVerlet::step() {
   const bool first_half = multirate_ && step_ % 2 == 0;
 
   // Half-step velocity, then positions; motions with prescribed velocity use v(t + dt/2).
-  // Without motions both go in one pass over the nodes (one thread fork per step, not 2 dim).
-  const bool fused = m_.motions.empty();
   const double lim = runaway_limit_;
   std::size_t bad = n;
   if (fused) {
     std::size_t first_bad = n;
     double* y = ns.cur.data();
+    const bool keep = undo_enabled_;
 #pragma omp parallel for schedule(static) reduction(min : first_bad)
     for (std::size_t i = 0; i < n; ++i) {
       const double c = multirate_ ? kick(i, true, first_half) : hdt;
       for (int d = 0; d < dim; ++d) {
+        if (keep) {
+          saved_.u[d][i] = ns.u[d][i];
+          saved_.v[d][i] = ns.v[d][i];
+          saved_.a[d][i] = ns.a[d][i];
+        }
         const double v = ns.v[d][i] + c * ns.a[d][i];
         const double u = ns.u[d][i] + dt * v;
         ns.v[d][i] = v;
@@ -309,14 +338,9 @@ bool VelocityVerlet::step() {
 
   apply_loads(time_);
   if (first_half)
-    compute_accelerations(&fast_rows_, true);
+    compute_accelerations(&fast_rows_, true, 1);
   else
-    compute_accelerations();
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
-    const double c = multirate_ ? kick(i, false, first_half) : hdt;
-    for (int d = 0; d < dim; ++d) ns.v[d][i] += c * ns.a[d][i];
-  }
+    compute_accelerations(nullptr, false, 0);
   impose_motions(time_, true);
   const double p = external_power();
   external_work_ += 0.5 * (p + last_power_) * dt;

@@ -70,8 +70,9 @@ class VelocityVerlet {
 
  private:
   void apply_loads(double t);
+  // closing_kick >= 0: also the step's closing half-kick (1: the first of a two-rate pair).
   void compute_accelerations(const std::vector<std::uint32_t>* rows = nullptr,
-                             bool subcycle = false);
+                             bool subcycle = false, int closing_kick = -1);
   // Sorts nodes onto the slow or fast rate (all nodes, or the rows an event rebuilt).
   void classify_rates(const std::vector<std::uint32_t>* rows);
   // Kick factor of node i: the opening (or closing) half-kick of this step.
