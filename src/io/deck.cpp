@@ -385,9 +385,6 @@ Deck parse_deck(const std::string& text, const std::string& name) {
       if (dk.multirate && dk.formulation == "lps")
         s.fail("multirate", "two-rate stepping needs row-local forces: formulation: pmb (the LPS "
                             "dilatation couples every node to its neighbours' rows)");
-      if (dk.multirate && !dk.motions.empty())
-        s.fail("multirate", "two-rate stepping does not support prescribed motions "
-                            "(boundary_conditions with velocity or displacement); use loads");
       if (s.has("end_time") == s.has("steps"))
         s.fail("", "give exactly one of end_time (s) or steps");
       if (s.has("end_time")) dk.end_time = s.number("end_time", std::nullopt, positive());

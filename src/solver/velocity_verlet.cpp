@@ -70,10 +70,10 @@ void VelocityVerlet::request_energy_at(long step) {
 }
 
 void VelocityVerlet::set_multirate(double safety) {
-  if (!forces_are_row_local(m_) || !m_.motions.empty())
+  if (!forces_are_row_local(m_))
     throw std::invalid_argument(
         "two-rate stepping needs forces that depend on a node's own bond row (bond-based PMB "
-        "with source-horizon pairing) and no prescribed motions");
+        "with source-horizon pairing)");
   multirate_ = true;
   multirate_safety_ = safety;
 }
@@ -82,9 +82,13 @@ void VelocityVerlet::classify_rates(const std::vector<std::uint32_t>* rows) {
   if (!multirate_) return;
   const NodeSet& ns = m_.nodes;
   slow_.resize(ns.size(), 0);
+  // Nodes with prescribed motions take every step: their reactions need their forces each step.
+  std::vector<char> driven(ns.size(), 0);
+  for (const PrescribedMotion& pm : m_.motions)
+    for (std::uint32_t i : pm.nodes) driven[i] = 1;
   auto sort_node = [&](std::size_t i, double k) {
     // k = 0: no intact bonds to be unstable in; a lone node can take any step.
-    slow_[i] = (ns.flags[i] & kActive) &&
+    slow_[i] = (ns.flags[i] & kActive) && !driven[i] &&
                (!(k > 0) || 2.0 * dt_ <= multirate_safety_ * std::sqrt(2.0 * ns.density[i] / k));
   };
   if (rows) {
@@ -113,7 +117,8 @@ void VelocityVerlet::compute_accelerations(const std::vector<std::uint32_t>* row
   // restored state's, which their forces were not recomputed for); constrained models take the
   // full pass (reactions). Its energy field is complete only if the other rows' densities belong
   // to this very state (computed by this step's pass); else the observers make their own.
-  const bool partial = rows && forces_are_row_local(m_) && m_.motions.empty();
+  // A subcycle pass covers every node with a prescribed motion (they are never slow).
+  const bool partial = rows && forces_are_row_local(m_) && (m_.motions.empty() || subcycle);
   // A subcycle step: the slow rows' densities at this (drifted) state come from their own pass.
   const bool energy_kept = partial && want_energy && (subcycle || energy_step_ == step_);
   if (subcycle && want_energy)
@@ -304,7 +309,7 @@ bool VelocityVerlet::step() {
       double* v = ns.v[d].data();
       const double* a = ns.a[d].data();
 #pragma omp parallel for schedule(static)
-      for (std::size_t i = 0; i < n; ++i) v[i] += hdt * a[i];
+      for (std::size_t i = 0; i < n; ++i) v[i] += (multirate_ ? kick(i, true, first_half) : hdt) * a[i];
     }
     impose_motions(time_ + hdt, true);
     for (int d = 0; d < dim; ++d) {

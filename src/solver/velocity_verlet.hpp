@@ -55,8 +55,9 @@ class VelocityVerlet {
   // row) allows 2 dt with the deck's safety factor advances as one Velocity-Verlet step of 2 dt
   // over two steps; the others take every step. The slow nodes' positions at the odd steps lie
   // on their straight drift (what Verlet's drift gives them anyway), so their fast neighbours see
-  // a consistent configuration, and the slow rows' forces are summed on even steps only. Needs
-  // row-local forces (plain PMB) and no prescribed motions. Call before initialize().
+  // a consistent configuration, and the slow rows' forces are summed on even steps only. Nodes
+  // with prescribed motions stay on dt. Needs row-local forces (plain PMB). Call before
+  // initialize().
   void set_multirate(double safety);
   bool multirate() const { return multirate_; }
   // Active nodes on the 2 dt rate now.
