@@ -127,8 +127,10 @@ class FamilySearch {
 // Bond arrays of at least `total` entries; growth leaves headroom so that a run of refinement
 // events reallocates only now and then.
 void grow_bond_arrays(BondFamilies& fam, std::size_t total) {
+  // A quarter of headroom: refinement events append their rebuilt rows every few steps, and a
+  // reallocation copies every bond (with 1/16 it happened every other event).
   auto fit = [total](auto& v) {
-    if (v.capacity() < total) v.reserve(total + total / 16);
+    if (v.capacity() < total) v.reserve(total + total / 4);
     v.resize(total);
   };
   fit(fam.neighbor);
