@@ -67,6 +67,10 @@ int check(const std::string& path) {
     fmt::print("dt_crit         {:.6e} s (Silling-Askari, node {})\n", ts.dt_crit, ts.limiting_node);
     fmt::print("dt              {:.6e} s{}\n", ts.dt, dk.time_step ? " (deck)" : " (safety x dt_crit)");
     fmt::print("steps           {} (end time {:.6e} s)\n", ts.steps, ts.steps * ts.dt);
+    if (dk.multirate)
+      fmt::print("two-rate        nodes whose stable step is at least 2 dt / {:.3g} take 2 dt "
+                 "(solver.multirate)\n",
+                 dk.safety);
   }
   for (const BodyLoad& l : m.loads)
     fmt::print("load            {}: {} nodes, body force density [{:.4g}, {:.4g}, {:.4g}] N/m^3\n",
