@@ -140,7 +140,7 @@ void grow_bond_arrays(BondFamilies& fam, std::size_t total) {
 
 }  // namespace
 
-BondFamilies build_families(const NodeSet& nodes, const QuadratureSpec& quad) {
+BondFamilies build_families(const NodeSet& nodes, const QuadratureSpec& quad, double headroom) {
   const std::size_t n = nodes.size();
   BondFamilies fam;
   fam.offsets.assign(n + 1, 0);
@@ -152,6 +152,10 @@ BondFamilies build_families(const NodeSet& nodes, const QuadratureSpec& quad) {
   for (std::size_t i = 0; i < n; ++i)
     if (nodes.flags[i] & kActive) fam.offsets[i + 1] = search.count(i);
   for (std::size_t i = 0; i < n; ++i) fam.offsets[i + 1] += fam.offsets[i];
+  const auto spare = static_cast<std::size_t>(headroom * static_cast<double>(fam.offsets[n]));
+  fam.neighbor.reserve(fam.offsets[n] + spare);
+  fam.inv_length.reserve(fam.offsets[n] + spare);
+  fam.beta.reserve(fam.offsets[n] + spare);
   fam.neighbor.resize(fam.offsets[n]);
   fam.inv_length.resize(fam.offsets[n]);
   fam.beta.resize(fam.offsets[n]);
@@ -211,6 +215,10 @@ void rebuild_rows(BondFamilies& fam, const NodeSet& nodes, const QuadratureSpec&
     BondFamilies c;
     c.offsets.assign(n + 1, 0);
     for (std::size_t i = 0; i < n; ++i) c.offsets[i + 1] = c.offsets[i] + (fam.ends[i] - fam.offsets[i]);
+    // The same headroom as a growth step: the next event appends without copying every bond.
+    c.neighbor.reserve(c.offsets[n] + c.offsets[n] / 4);
+    c.inv_length.reserve(c.offsets[n] + c.offsets[n] / 4);
+    c.beta.reserve(c.offsets[n] + c.offsets[n] / 4);
     c.neighbor.resize(c.offsets[n]);
     c.inv_length.resize(c.offsets[n]);
     c.beta.resize(c.offsets[n]);

@@ -12,8 +12,11 @@ struct QuadratureSpec {
   double lattice_rotation = 0.0;  // radians; orientation of the (2D) cells for sub-cell sampling
 };
 
-// The families of every active node, rows contiguous in node order.
-BondFamilies build_families(const NodeSet& nodes, const QuadratureSpec& quadrature);
+// The families of every active node, rows contiguous in node order. `headroom`: spare capacity
+// (a fraction of the bonds) reserved for rows that refinement will append; it is address space
+// only until used (pages untouched), so it costs no resident memory.
+BondFamilies build_families(const NodeSet& nodes, const QuadratureSpec& quadrature,
+                            double headroom = 0.0);
 
 // Searches again the rows of the flagged nodes (and gives nodes appended since the last build
 // empty rows first): each such row is written after the current arrays, whose old entries turn

@@ -83,7 +83,9 @@ Model build_model(const Deck& dk) {
   qs.rule = dk.quadrature;
   qs.lattice_rotation = dk.grid.rotation_deg * 3.14159265358979323846 / 180.0;
   const auto t0 = std::chrono::steady_clock::now();
-  m.bonds = build_families(ns, qs);
+  // An adaptive run appends refined rows: spare capacity now saves its first event a copy of
+  // every bond.
+  m.bonds = build_families(ns, qs, dk.adapt.enabled ? 0.25 : 0.0);
   m.family_build_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   m.surface_correction = dk.surface_correction;
