@@ -200,12 +200,7 @@ void VelocityVerlet::refresh(const std::vector<std::uint32_t>* rows) {
   apply_loads(time_);
   compute_accelerations(rows);
   // A node's rate changes only with its row (new nodes, rebuilt families, scaled horizons).
-  if (multirate_) {
-    if (rows)
-      classify_rates(rows);
-    else
-      classify_rates(nullptr);
-  }
+  classify_rates(rows);
   last_power_ = external_power();
 }
 
