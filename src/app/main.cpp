@@ -213,9 +213,13 @@ int main(int argc, char** argv) {
                  ro.out_dir ? *ro.out_dir : dk.output.directory);
       return 3;
     }
-    fmt::print("done: {} steps in {:.2f} s wall ({:.3g} bond evaluations/s)\n",
+    fmt::print("done: {} steps in {:.2f} s wall ({:.3g} bond evaluations/s{})\n",
                s["steps"].get<long>(), s["wall_time_s"].get<double>(),
-               s["bond_evals_per_s"].get<double>());
+               s["bond_evals_per_s"].get<double>(),
+               s.contains("multirate_slow_nodes")
+                   ? fmt::format("; {} nodes on 2 dt at the end",
+                                 s["multirate_slow_nodes"].get<std::size_t>())
+                   : std::string());
     if (s.contains("crack")) {
       const auto& c = s["crack"];
       auto us = [](const nlohmann::json& v) {

@@ -76,8 +76,9 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
                "s0 = {:.4e}\n",
                ns.size(), m.bonds.num_bonds(), m.precrack_bonds, ns.dim, m.material.c0,
                m.material.s0);
-    fmt::print("time step {:.4e} s (stable bound {:.4e} s), {} steps, {} threads\n", ts.dt,
-               ts.dt_crit, ts.steps, omp_get_max_threads());
+    fmt::print("time step {:.4e} s (stable bound {:.4e} s), {} steps, {} threads{}\n", ts.dt,
+               ts.dt_crit, ts.steps, omp_get_max_threads(),
+               dk.multirate ? "; two-rate: nodes stable at 2 dt take it" : "");
   }
 
   // Crack-tip tracker.
