@@ -124,13 +124,15 @@ class FamilySearch {
   CellGrid grid_;
 };
 
-// Bond arrays of at least `total` entries; growth leaves headroom so that a run of refinement
-// events reallocates only now and then.
-void grow_bond_arrays(BondFamilies& fam, std::size_t total) {
-  // A quarter of headroom: refinement events append their rebuilt rows every few steps, and a
-  // reallocation copies every bond (with 1/16 it happened every other event).
-  auto fit = [total](auto& v) {
-    if (v.capacity() < total) v.reserve(total + total / 4);
+// Bond arrays of at least `total` entries; growth leaves `headroom` (a fraction of `total`) so
+// that a run of refinement events reallocates only now and then: events append their rebuilt
+// rows every few steps, and a reallocation copies every bond (with 1/16 it happened every other
+// event).
+void grow_bond_arrays(BondFamilies& fam, std::size_t total,
+                      double headroom = kRefinementBondHeadroom) {
+  const auto spare = static_cast<std::size_t>(headroom * static_cast<double>(total));
+  auto fit = [total, spare](auto& v) {
+    if (v.capacity() < total) v.reserve(total + spare);
     v.resize(total);
   };
   fit(fam.neighbor);
@@ -152,13 +154,7 @@ BondFamilies build_families(const NodeSet& nodes, const QuadratureSpec& quad, do
   for (std::size_t i = 0; i < n; ++i)
     if (nodes.flags[i] & kActive) fam.offsets[i + 1] = search.count(i);
   for (std::size_t i = 0; i < n; ++i) fam.offsets[i + 1] += fam.offsets[i];
-  const auto spare = static_cast<std::size_t>(headroom * static_cast<double>(fam.offsets[n]));
-  fam.neighbor.reserve(fam.offsets[n] + spare);
-  fam.inv_length.reserve(fam.offsets[n] + spare);
-  fam.beta.reserve(fam.offsets[n] + spare);
-  fam.neighbor.resize(fam.offsets[n]);
-  fam.inv_length.resize(fam.offsets[n]);
-  fam.beta.resize(fam.offsets[n]);
+  grow_bond_arrays(fam, fam.offsets[n], headroom);
 #pragma omp parallel
   {
     std::vector<Entry> scratch;
@@ -215,13 +211,8 @@ void rebuild_rows(BondFamilies& fam, const NodeSet& nodes, const QuadratureSpec&
     BondFamilies c;
     c.offsets.assign(n + 1, 0);
     for (std::size_t i = 0; i < n; ++i) c.offsets[i + 1] = c.offsets[i] + (fam.ends[i] - fam.offsets[i]);
-    // The same headroom as a growth step: the next event appends without copying every bond.
-    c.neighbor.reserve(c.offsets[n] + c.offsets[n] / 4);
-    c.inv_length.reserve(c.offsets[n] + c.offsets[n] / 4);
-    c.beta.reserve(c.offsets[n] + c.offsets[n] / 4);
-    c.neighbor.resize(c.offsets[n]);
-    c.inv_length.resize(c.offsets[n]);
-    c.beta.resize(c.offsets[n]);
+    // With the growth headroom: the next event appends without copying every bond.
+    grow_bond_arrays(c, c.offsets[n]);
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
       const auto b = static_cast<long>(fam.offsets[i]), e = static_cast<long>(fam.ends[i]);

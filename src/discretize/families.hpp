@@ -12,6 +12,9 @@ struct QuadratureSpec {
   double lattice_rotation = 0.0;  // radians; orientation of the (2D) cells for sub-cell sampling
 };
 
+// Spare bond capacity (fraction of the bonds) that refinement keeps for the rows it appends.
+inline constexpr double kRefinementBondHeadroom = 0.25;
+
 // The families of every active node, rows contiguous in node order. `headroom`: spare capacity
 // (a fraction of the bonds) reserved for rows that refinement will append; it is address space
 // only until used (pages untouched), so it costs no resident memory.

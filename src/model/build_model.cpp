@@ -85,7 +85,7 @@ Model build_model(const Deck& dk) {
   const auto t0 = std::chrono::steady_clock::now();
   // An adaptive run appends refined rows: spare capacity now saves its first event a copy of
   // every bond.
-  m.bonds = build_families(ns, qs, dk.adapt.enabled ? 0.25 : 0.0);
+  m.bonds = build_families(ns, qs, dk.adapt.enabled ? kRefinementBondHeadroom : 0.0);
   m.family_build_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   m.surface_correction = dk.surface_correction;

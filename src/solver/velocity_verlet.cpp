@@ -283,7 +283,7 @@ bool VelocityVerlet::step() {
     const bool keep = undo_enabled_;
 #pragma omp parallel for schedule(static) reduction(min : first_bad)
     for (std::size_t i = 0; i < n; ++i) {
-      const double c = multirate_ ? kick(i, true, first_half) : hdt;
+      const double c = kick(i, true, first_half);
       for (int d = 0; d < dim; ++d) {
         if (keep) {
           saved_.u[d][i] = ns.u[d][i];
@@ -304,7 +304,7 @@ bool VelocityVerlet::step() {
       double* v = ns.v[d].data();
       const double* a = ns.a[d].data();
 #pragma omp parallel for schedule(static)
-      for (std::size_t i = 0; i < n; ++i) v[i] += (multirate_ ? kick(i, true, first_half) : hdt) * a[i];
+      for (std::size_t i = 0; i < n; ++i) v[i] += kick(i, true, first_half) * a[i];
     }
     impose_motions(time_ + hdt, true);
     for (int d = 0; d < dim; ++d) {
