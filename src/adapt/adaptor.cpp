@@ -87,6 +87,7 @@ void Adaptor::refine(const std::vector<std::uint32_t>& parents, std::size_t iden
   ev.time = vv_.time();
   ev.trigger = trigger;
   ev.identified = identified;
+  vv_.synchronize_velocities();
   const double h0 = spec_.conserve_energy ? total_energy() : 0.0;
   refinable_valid_ = false;
   ev.stats = refine_nodes(m_, parents, spec_);
@@ -146,6 +147,7 @@ bool Adaptor::coarsen_quiet(const std::vector<double>& E, double alpha) {
   ev.time = vv_.time();
   ev.trigger = "coarsen";
   ev.identified = quiet.size();
+  vv_.synchronize_velocities();
   const double h0 = spec_.conserve_energy ? total_energy() : 0.0;
   refinable_valid_ = false;
   ev.stats = coarsen_nodes(m_, quiet);

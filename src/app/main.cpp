@@ -68,9 +68,9 @@ int check(const std::string& path) {
     fmt::print("dt              {:.6e} s{}\n", ts.dt, dk.time_step ? " (deck)" : " (safety x dt_crit)");
     fmt::print("steps           {} (end time {:.6e} s)\n", ts.steps, ts.steps * ts.dt);
     if (dk.multirate)
-      fmt::print("two-rate        nodes whose stable step is at least 2 dt / {:.3g} take 2 dt "
-                 "(solver.multirate)\n",
-                 dk.safety);
+      fmt::print("multi-rate      nodes whose stable step is at least k dt / {:.3g} take k dt, "
+                 "k <= {} (solver.multirate)\n",
+                 dk.safety, dk.multirate_ratio);
   }
   for (const BodyLoad& l : m.loads)
     fmt::print("load            {}: {} nodes, body force density [{:.4g}, {:.4g}, {:.4g}] N/m^3\n",
@@ -217,7 +217,7 @@ int main(int argc, char** argv) {
                s["steps"].get<long>(), s["wall_time_s"].get<double>(),
                s["bond_evals_per_s"].get<double>(),
                s.contains("multirate_slow_nodes")
-                   ? fmt::format("; {} nodes on 2 dt at the end",
+                   ? fmt::format("; {} nodes on a longer step than dt at the end",
                                  s["multirate_slow_nodes"].get<std::size_t>())
                    : std::string());
     if (s.contains("crack")) {

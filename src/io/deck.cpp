@@ -352,7 +352,7 @@ Deck parse_deck(const std::string& text, const std::string& name) {
                                        : Deck::SolverType::Explicit;
     if (dk.solver == Deck::SolverType::Relaxation) {
       for (const char* k : {"time_step", "end_time", "steps", "safety_factor", "multirate",
-                            "allow_unstable_time_step"})
+                            "multirate_ratio", "allow_unstable_time_step"})
         if (s.has(k))
           s.fail(k, "dynamic relaxation has no physical time step; use load_steps, tolerance "
                     "and max_iterations");
@@ -371,7 +371,7 @@ Deck parse_deck(const std::string& text, const std::string& name) {
                        "model use type: relaxation");
       // Linearized equilibrium: no time stepping keys, no bond breaking.
       for (const char* k : {"time_step", "end_time", "steps", "safety_factor", "multirate",
-                            "allow_unstable_time_step"})
+                            "multirate_ratio", "allow_unstable_time_step"})
         if (s.has(k))
           s.fail(k, "a static solve has no time stepping; remove this key or use type: explicit");
       dk.damage = false;
@@ -382,6 +382,12 @@ Deck parse_deck(const std::string& text, const std::string& name) {
       });
       dk.allow_unstable_time_step = s.boolean("allow_unstable_time_step", false);
       dk.multirate = s.boolean("multirate", false);
+      if (s.has("multirate_ratio") && !dk.multirate)
+        s.fail("multirate_ratio", "the largest step ratio of multi-rate stepping needs "
+                                  "multirate: true");
+      dk.multirate_ratio = static_cast<int>(s.integer("multirate_ratio", 2, [](long v) {
+        return (v >= 2 && v <= 4) ? std::string() : std::string("an integer 2, 3 or 4");
+      }));
       if (dk.multirate && dk.formulation == "lps")
         s.fail("multirate", "two-rate stepping needs row-local forces: formulation: pmb (the LPS "
                             "dilatation couples every node to its neighbours' rows)");

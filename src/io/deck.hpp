@@ -89,6 +89,7 @@ struct Deck {
   bool allow_unstable_time_step = false;
   // Two-rate stepping: nodes whose own stable step allows 2 dt take it (VelocityVerlet).
   bool multirate = false;
+  int multirate_ratio = 2;  // the longest node step, in units of dt
   double end_time = 0.0;
   std::optional<long> steps;
   AdaptSpec adapt;

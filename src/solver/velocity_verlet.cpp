@@ -69,27 +69,61 @@ void VelocityVerlet::request_energy_at(long step) {
     energy_requests_.push_back(step);
 }
 
-void VelocityVerlet::set_multirate(double safety) {
+void VelocityVerlet::set_multirate(double safety, int max_ratio) {
   if (!forces_are_row_local(m_))
     throw std::invalid_argument(
-        "two-rate stepping needs forces that depend on a node's own bond row (bond-based PMB "
+        "multi-rate stepping needs forces that depend on a node's own bond row (bond-based PMB "
         "with source-horizon pairing)");
+  if (max_ratio < 2 || max_ratio > kMaxRateRatio)
+    throw std::invalid_argument("multi-rate stepping: the largest step ratio must be 2 ... " +
+                                std::to_string(kMaxRateRatio));
   multirate_ = true;
   multirate_safety_ = safety;
+  max_ratio_ = max_ratio;
+}
+
+std::size_t VelocityVerlet::slow_nodes() const {
+  std::size_t n = 0;
+  for (int k = 2; k <= kMaxRateRatio; ++k) n += class_rows_[static_cast<std::size_t>(k)].size();
+  return n;
 }
 
 void VelocityVerlet::classify_rates(const std::vector<std::uint32_t>* rows) {
   if (!multirate_) return;
-  const NodeSet& ns = m_.nodes;
-  slow_.resize(ns.size(), 0);
+  NodeSet& ns = m_.nodes;
+  rate_.resize(ns.size(), 1);
+  target_.resize(ns.size(), 1);
   // Nodes with prescribed motions take every step: their reactions need their forces each step.
   std::vector<char> driven(ns.size(), 0);
   for (const PrescribedMotion& pm : m_.motions)
     for (std::uint32_t i : pm.nodes) driven[i] = 1;
   auto sort_node = [&](std::size_t i, double k) {
-    // k = 0: no intact bonds to be unstable in; a lone node can take any step.
-    slow_[i] = (ns.flags[i] & kActive) && !driven[i] &&
-               (!(k > 0) || 2.0 * dt_ <= multirate_safety_ * std::sqrt(2.0 * ns.density[i] / k));
+    int t = 1;
+    if ((ns.flags[i] & kActive) && !driven[i]) {
+      // k = 0: no intact bonds to be unstable in; a lone node can take any step.
+      const double bound = k > 0 ? multirate_safety_ * std::sqrt(2.0 * ns.density[i] / k) : INFINITY;
+      while (t < max_ratio_ && (t + 1) * dt_ <= bound) ++t;
+    }
+    target_[i] = static_cast<std::uint8_t>(t);
+    const int r = rate_[i];
+    if (t < r) {
+      // Its step is too long now: back to dt at once. Mid-cycle (p steps since its opening kick
+      // of r dt / 2) v is the velocity at r/2 steps in; shifted to now, to first order (unless
+      // synchronize_velocities() did so already).
+      const long p = step_ % r;
+      if (p != 0 && !synced_)
+        for (int d = 0; d < ns.dim; ++d)
+          ns.v[d][i] -= (0.5 * r - static_cast<double>(p)) * dt_ * ns.a[d][i];
+      rate_[i] = 1;
+    }
+    // A longer step starts only where the node's old and new cycles both begin (now, or later in
+    // prepare_rates): joining a cycle midway would skip part of its opening kick.
+    if (t > rate_[i]) {
+      if (step_ % t == 0 && step_ % rate_[i] == 0)
+        rate_[i] = static_cast<std::uint8_t>(t);
+      else
+        pending_.push_back(static_cast<std::uint32_t>(i));
+    }
   };
   if (rows) {
     for (std::uint32_t i : *rows)
@@ -99,16 +133,77 @@ void VelocityVerlet::classify_rates(const std::vector<std::uint32_t>* rows) {
     pmb_stiffness_sum(ns, m_.bonds, m_.material.shape, K);
     for (std::size_t i = 0; i < ns.size(); ++i) sort_node(i, K[i]);
   }
-  fast_rows_.clear();
-  slow_rows_.clear();
+  std::sort(pending_.begin(), pending_.end());
+  pending_.erase(std::unique(pending_.begin(), pending_.end()), pending_.end());
+  rebuild_rate_rows();
+}
+
+void VelocityVerlet::rebuild_rate_rows() {
+  const NodeSet& ns = m_.nodes;
+  for (auto& c : class_rows_) c.clear();
   for (std::size_t i = 0; i < ns.size(); ++i) {
-    if (!(ns.flags[i] & kActive)) continue;
-    (slow_[i] ? slow_rows_ : fast_rows_).push_back(static_cast<std::uint32_t>(i));
+    if (ns.flags[i] & kActive)
+      class_rows_[rate_[i]].push_back(static_cast<std::uint32_t>(i));
+    else
+      rate_[i] = 1;  // a node that comes back (coarsening) starts on dt
   }
 }
 
+void VelocityVerlet::synchronize_velocities() {
+  if (!multirate_ || synced_) return;
+  synced_ = true;
+  synced_shift_.clear();
+  NodeSet& ns = m_.nodes;
+  // Rate 2 needs nothing: one step into its cycle, v is already the velocity of now.
+  for (int k = 3; k <= kMaxRateRatio; ++k) {
+    const long p = step_ % k;
+    if (p == 0) continue;
+    const double c = (0.5 * k - static_cast<double>(p)) * dt_;
+    for (std::uint32_t i : class_rows_[static_cast<std::size_t>(k)]) {
+      SyncShift q{i, static_cast<std::uint8_t>(k), {0, 0, 0}};
+      for (int d = 0; d < ns.dim; ++d) {
+        q.dv[static_cast<std::size_t>(d)] = c * ns.a[d][i];
+        ns.v[d][i] -= q.dv[static_cast<std::size_t>(d)];
+      }
+      synced_shift_.push_back(q);
+    }
+  }
+}
+
+void VelocityVerlet::prepare_rates() {
+  if (!multirate_) return;
+  if (!pending_.empty()) {
+    bool changed = false;
+    std::erase_if(pending_, [&](std::uint32_t i) {
+      if (i >= rate_.size() || target_[i] <= rate_[i] || !(m_.nodes.flags[i] & kActive)) return true;
+      if (step_ % rate_[i] != 0 || step_ % target_[i] != 0) return false;
+      rate_[i] = target_[i];
+      changed = true;
+      return true;
+    });
+    if (changed) rebuild_rate_rows();
+  }
+  // A node of rate k opens its k dt step on the steps that start at a multiple of k and closes
+  // it (force pass, closing kick) on the steps that end at one.
+  const long s0 = step_, s1 = step_ + 1;
+  full_pass_ = true;
+  for (int k = 1; k <= kMaxRateRatio; ++k) {
+    const auto kk = static_cast<std::size_t>(k);
+    open_kick_[kk] = s0 % k == 0 ? 0.5 * k * dt_ : 0.0;
+    close_kick_[kk] = s1 % k == 0 ? 0.5 * k * dt_ : 0.0;
+    if (s1 % k != 0 && !class_rows_[kk].empty()) full_pass_ = false;
+  }
+  pass_rows_.clear();
+  if (!full_pass_)
+    for (int k = 1; k <= kMaxRateRatio; ++k)
+      if (s1 % k == 0) {
+        const auto& c = class_rows_[static_cast<std::size_t>(k)];
+        pass_rows_.insert(pass_rows_.end(), c.begin(), c.end());
+      }
+}
+
 void VelocityVerlet::compute_accelerations(const std::vector<std::uint32_t>* rows, bool subcycle,
-                                           int closing_kick) {
+                                           bool closing_kick) {
   NodeSet& ns = m_.nodes;
   std::erase_if(energy_requests_, [&](long s) { return s < step_; });
   const bool want_energy =
@@ -119,11 +214,18 @@ void VelocityVerlet::compute_accelerations(const std::vector<std::uint32_t>* row
   // to this very state (computed by this step's pass); else the observers make their own.
   // A subcycle pass covers every node with a prescribed motion (they are never slow).
   const bool partial = rows && forces_are_row_local(m_) && (m_.motions.empty() || subcycle);
-  // A subcycle step: the slow rows' densities at this (drifted) state come from their own pass.
+  // A subcycle step: the idle rows' densities at this (drifted) state come from their own pass.
   const bool energy_kept = partial && want_energy && (subcycle || energy_step_ == step_);
-  if (subcycle && want_energy)
+  if (subcycle && want_energy) {
+    idle_rows_.clear();
+    for (int k = 2; k <= kMaxRateRatio; ++k)
+      if (step_ % k != 0) {
+        const auto& c = class_rows_[static_cast<std::size_t>(k)];
+        idle_rows_.insert(idle_rows_.end(), c.begin(), c.end());
+      }
     pmb_energy_density(ns, m_.bonds, m_.material.shape, energy_, m_.material.thermal_strain,
-                       &slow_rows_);
+                       &idle_rows_);
+  }
   energy_step_ = want_energy && (!partial || energy_kept) ? step_ : -1;
   std::vector<std::uint64_t>* log = undo_enabled_ ? &saved_.broken_log : nullptr;
   if (partial) {
@@ -139,13 +241,12 @@ void VelocityVerlet::compute_accelerations(const std::vector<std::uint32_t>* row
   const bool loaded = !body_[0].empty();
   // The step's closing half-kick rides along when no constrained component needs its
   // acceleration zeroed first (the kick of a row left out of a partial pass is zero).
-  const bool kick_here = closing_kick >= 0 && fixed_dofs_.empty();
-  const bool first_half = closing_kick == 1;
+  const bool kick_here = closing_kick && fixed_dofs_.empty();
 #pragma omp parallel for schedule(static)
   for (std::size_t r = 0; r < n; ++r) {
     const std::size_t i = partial ? (*rows)[r] : r;
     const double inv_rho = 1.0 / ns.density[i];
-    const double c = kick_here ? kick(i, false, first_half) : 0.0;
+    const double c = kick_here ? kick(i, close_kick_) : 0.0;
     for (int d = 0; d < dim; ++d) {
       const double a = (ns.f[d][i] + (loaded ? body_[d][i] : 0.0)) * inv_rho;
       ns.a[d][i] = a;
@@ -160,10 +261,10 @@ void VelocityVerlet::compute_accelerations(const std::vector<std::uint32_t>* row
     reaction_[q] = ns.density[i] * acc - ns.f[d][i] - (loaded ? body_[d][i] : 0.0);
     ns.a[d][i] = 0.0;
   }
-  if (closing_kick >= 0 && !kick_here) {
+  if (closing_kick && !kick_here) {
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < ns.size(); ++i) {
-      const double c = kick(i, false, first_half);
+      const double c = kick(i, close_kick_);
       for (int d = 0; d < dim; ++d) ns.v[d][i] += c * ns.a[d][i];
     }
   }
@@ -201,6 +302,15 @@ void VelocityVerlet::refresh(const std::vector<std::uint32_t>* rows) {
   compute_accelerations(rows);
   // A node's rate changes only with its row (new nodes, rebuilt families, scaled horizons).
   classify_rates(rows);
+  if (synced_) {
+    // Back to the half-step velocities of the nodes that go on with their cycle.
+    NodeSet& ns = m_.nodes;
+    for (const SyncShift& q : synced_shift_)
+      if (rate_[q.node] == q.rate)
+        for (int d = 0; d < ns.dim; ++d) ns.v[d][q.node] += q.dv[static_cast<std::size_t>(d)];
+    synced_shift_.clear();
+    synced_ = false;
+  }
   last_power_ = external_power();
 }
 
@@ -270,9 +380,8 @@ bool VelocityVerlet::step() {
   }
   for (std::size_t q = 0; q < fixed_dofs_.size(); ++q)
     v_prev_fixed_[q] = ns.v[fixed_dofs_[q] % 3][fixed_dofs_[q] / 3];
-  // Two-rate stepping: slow nodes open their 2 dt step on even steps (kick dt, no force pass) and
-  // close it on the odd ones (no opening kick; force pass; kick dt).
-  const bool first_half = multirate_ && step_ % 2 == 0;
+  // Multi-rate stepping: this step's kicks per rate and the rows whose step closes now.
+  prepare_rates();
 
   // Half-step velocity, then positions; motions with prescribed velocity use v(t + dt/2).
   const double lim = runaway_limit_;
@@ -283,7 +392,7 @@ bool VelocityVerlet::step() {
     const bool keep = undo_enabled_;
 #pragma omp parallel for schedule(static) reduction(min : first_bad)
     for (std::size_t i = 0; i < n; ++i) {
-      const double c = kick(i, true, first_half);
+      const double c = kick(i, open_kick_);
       for (int d = 0; d < dim; ++d) {
         if (keep) {
           saved_.u[d][i] = ns.u[d][i];
@@ -304,7 +413,7 @@ bool VelocityVerlet::step() {
       double* v = ns.v[d].data();
       const double* a = ns.a[d].data();
 #pragma omp parallel for schedule(static)
-      for (std::size_t i = 0; i < n; ++i) v[i] += kick(i, true, first_half) * a[i];
+      for (std::size_t i = 0; i < n; ++i) v[i] += kick(i, open_kick_) * a[i];
     }
     impose_motions(time_ + hdt, true);
     for (int d = 0; d < dim; ++d) {
@@ -337,10 +446,10 @@ bool VelocityVerlet::step() {
   }
 
   apply_loads(time_);
-  if (first_half)
-    compute_accelerations(&fast_rows_, true, 1);
+  if (multirate_ && !full_pass_)
+    compute_accelerations(&pass_rows_, true, true);
   else
-    compute_accelerations(nullptr, false, 0);
+    compute_accelerations(nullptr, false, true);
   impose_motions(time_, true);
   const double p = external_power();
   external_work_ += 0.5 * (p + last_power_) * dt;

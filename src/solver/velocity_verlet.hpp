@@ -51,19 +51,25 @@ class VelocityVerlet {
   // it) to write every node's strain-energy density on the way: the bond loop then serves both,
   // instead of a second pass over the bonds (history samples, the energy trigger).
   void request_energy_at(long step);
-  // Two-rate stepping (subcycling): every node whose own stable step (Silling-Askari bound of its
-  // row) allows 2 dt with the deck's safety factor advances as one Velocity-Verlet step of 2 dt
-  // over two steps; the others take every step. The slow nodes' positions at the odd steps lie
-  // on their straight drift (what Verlet's drift gives them anyway), so their fast neighbours see
-  // a consistent configuration, and the slow rows' forces are summed on even steps only. Nodes
-  // with prescribed motions stay on dt. Needs row-local forces (plain PMB). Call before
-  // initialize().
-  void set_multirate(double safety);
+  // Multi-rate stepping (subcycling): every node whose own stable step (Silling-Askari bound of
+  // its row) allows k dt with the deck's safety factor, k <= max_ratio, advances as one
+  // Velocity-Verlet step of k dt spread over k steps (opening kick, k drifts, closing kick); the
+  // others take every step. Between their force passes the slow nodes' positions lie on their
+  // straight drift (what Verlet's drift gives them anyway), so their fast neighbours see a
+  // consistent configuration, and a slow row's forces are summed once per k steps. Nodes with
+  // prescribed motions stay on dt. Needs row-local forces (plain PMB). Call before initialize().
+  static constexpr int kMaxRateRatio = 4;
+  void set_multirate(double safety, int max_ratio = 2);
   bool multirate() const { return multirate_; }
-  // Active nodes on the 2 dt rate now.
-  std::size_t slow_nodes() const { return slow_rows_.size(); }
-  // Per node: on the 2 dt rate (empty without two-rate stepping).
-  const std::vector<char>& slow_flags() const { return slow_; }
+  // Active nodes on a longer step than dt now.
+  std::size_t slow_nodes() const;
+  // Before an event changes the grid: puts the velocity of now on every node that is inside a
+  // cycle of 3 dt or more (it holds the velocity of its cycle's middle), so that new nodes
+  // interpolate, and the event's momentum and kinetic energy use, one instant. refresh() gives
+  // the nodes that go on with their cycle their half-step velocity back.
+  void synchronize_velocities();
+  // Per node: its step in units of dt (empty without multi-rate stepping).
+  const std::vector<std::uint8_t>& rates() const { return rate_; }
   // The energy densities of the current state when a force pass computed them, else nullptr.
   const std::vector<double>* energy_density_now() const {
     return energy_step_ == step_ && energy_.size() == m_.nodes.size() ? &energy_ : nullptr;
@@ -71,15 +77,18 @@ class VelocityVerlet {
 
  private:
   void apply_loads(double t);
-  // closing_kick >= 0: also the step's closing half-kick (1: the first of a two-rate pair).
+  // closing_kick: also the step's closing half-kick (from close_kick_).
   void compute_accelerations(const std::vector<std::uint32_t>* rows = nullptr,
-                             bool subcycle = false, int closing_kick = -1);
-  // Sorts nodes onto the slow or fast rate (all nodes, or the rows an event rebuilt).
+                             bool subcycle = false, bool closing_kick = false);
+  // Sorts nodes onto their rates (all nodes, or the rows an event rebuilt).
   void classify_rates(const std::vector<std::uint32_t>* rows);
-  // Kick factor of node i: the opening (or closing) half-kick of this step.
-  double kick(std::size_t i, bool opening, bool first_half) const {
-    if (!multirate_ || !slow_[i]) return 0.5 * dt_;
-    return opening == first_half ? dt_ : 0.0;
+  // Takes up the longer rates that waited for a step where the node's cycles line up, and makes
+  // this step's kick factors and force rows.
+  void prepare_rates();
+  void rebuild_rate_rows();
+  // Kick factor of node i from a table of this step's opening or closing kicks per rate.
+  double kick(std::size_t i, const std::array<double, kMaxRateRatio + 1>& f) const {
+    return rate_.empty() ? 0.5 * dt_ : f[rate_[i]];
   }
   void impose_motions(double t, bool velocities_only);
   double external_power() const;
@@ -97,8 +106,21 @@ class VelocityVerlet {
   bool undo_enabled_ = false;
   bool multirate_ = false;
   double multirate_safety_ = 0.8;
-  std::vector<char> slow_;                        // per node: on the 2 dt rate
-  std::vector<std::uint32_t> fast_rows_, slow_rows_;  // active nodes of each rate
+  int max_ratio_ = 2;
+  std::vector<std::uint8_t> rate_;    // per node: its step in units of dt (1: every step)
+  std::vector<std::uint8_t> target_;  // per node: the rate it qualifies for
+  std::vector<std::uint32_t> pending_;  // nodes waiting to take a longer rate
+  std::array<std::vector<std::uint32_t>, kMaxRateRatio + 1> class_rows_;  // active nodes by rate
+  std::vector<std::uint32_t> pass_rows_, idle_rows_;  // this step's force rows, and the others
+  bool full_pass_ = true;                             // every active row is due this step
+  struct SyncShift {
+    std::uint32_t node;
+    std::uint8_t rate;
+    std::array<double, 3> dv;
+  };
+  std::vector<SyncShift> synced_shift_;  // what synchronize_velocities() took off
+  bool synced_ = false;
+  std::array<double, kMaxRateRatio + 1> open_kick_{}, close_kick_{};
   std::vector<long> energy_requests_;  // steps whose force passes also compute energies
   std::vector<double> energy_;
   long energy_step_ = -1;               // the step energy_ belongs to (-1: none)
