@@ -318,4 +318,10 @@ TEST(Multirate, DecksWhoseForcesAreNotRowLocalAreRefusedOthersAccepted) {
             "(accepted)");
   EXPECT_EQ(key_of(head + disc + "solver: {type: static, multirate: true}\n"),
             "solver.multirate");
+  EXPECT_EQ(key_of(head + disc + "solver: {time_step: 1e-8, steps: 1, multirate: true, multirate_ratio: 4}\n"),
+            "(accepted)");
+  EXPECT_EQ(key_of(head + disc + "solver: {time_step: 1e-8, steps: 1, multirate: true, multirate_ratio: 5}\n"),
+            "solver.multirate_ratio");
+  EXPECT_EQ(key_of(head + disc + "solver: {time_step: 1e-8, steps: 1, multirate_ratio: 3}\n"),
+            "solver.multirate_ratio");
 }
