@@ -54,6 +54,42 @@ inline RowSums row_force_sums(const double* yp, const std::uint32_t* nbr, const 
   return RowSums{a0, a1, a2, smax};
 }
 
+// The same force sums with, on the way, the sum over the intact bonds of g beta V s^2 xi
+// (4 W_i / c_i): one sweep of the row when energies are asked for. The force lines are those of
+// row_force_sums, and the extra reduction does not change how they vectorize: the forces come out
+// bit for bit the same (tests/test_pmb.cpp), so they do not depend on when energies are asked for.
+struct RowSumsW {
+  double a0, a1, a2, smax, w;
+};
+template <int D, InfluenceShape S>
+inline RowSumsW row_force_energy_sums(const double* yp, const std::uint32_t* nbr,
+                                      const double* inv_len, const float* beta, std::uint64_t kb,
+                                      std::uint64_t ke, double yi0, double yi1, double yi2,
+                                      double ci, double delta, double one_eth) {
+  double a0 = 0, a1 = 0, a2 = 0, smax = -INFINITY, w = 0;
+#pragma omp simd reduction(+ : a0, a1, a2, w) reduction(max : smax)
+  for (std::uint64_t k = kb; k < ke; ++k) {
+    const std::size_t j = 4 * static_cast<std::size_t>(nbr[k]);
+    const double d0 = yp[j] - yi0;
+    const double d1 = D > 1 ? yp[j + 1] - yi1 : 0.0;
+    const double d2 = D > 2 ? yp[j + 2] - yi2 : 0.0;
+    const double r = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2);
+    const double ail = std::abs(inv_len[k]);
+    const double bb = beta[k];
+    const double bp = 0.5 * (bb + std::abs(bb));
+    double gw = bp * yp[j + 3];
+    if constexpr (S != InfluenceShape::Constant) gw *= g<S>(1.0 / (ail * delta));
+    const double s = r * ail - one_eth;
+    smax = std::max(smax, bp > 0.0 ? s : -INFINITY);
+    const double fr = ci * gw * (ail - one_eth / r);
+    a0 += fr * d0;
+    a1 += fr * d1;
+    a2 += fr * d2;
+    w += gw * s * s / ail;
+  }
+  return RowSumsW{a0, a1, a2, smax, w};
+}
+
 // sum over the intact bonds of one row of g beta V s^2 xi (broken ones weigh 0, branch-free so
 // it vectorizes): 4 W_i / c_i. The force pass (when energies are asked for) and the energy
 // kernel share it, so both give the same bits.
@@ -111,10 +147,19 @@ std::size_t forces_kernel(NodeSet& ns, BondFamilies& bf, bool allow_breaking,
     const double s0 = (allow_breaking && !(flags[i] & kNoFail)) ? ns.critical_stretch[i] : INFINITY;
     const double delta = ns.horizon[i];
     const std::uint64_t kb = off[i], ke = ends[i];
-    // The energy has its own loop (row_energy_sum): folded in here it would change how the
-    // force sums vectorize, and forces would depend on when energies are asked for.
-    RowSums sums = row_force_sums<D, S>(yp, nbr, inv_len, beta, kb, ke, yi0, yi1, yi2, ci, delta,
-                                        one_eth);
+    // With energies asked for, one sweep gives both (row_force_energy_sums).
+    auto sweep = [&]() {
+      if constexpr (E) {
+        const RowSumsW q = row_force_energy_sums<D, S>(yp, nbr, inv_len, beta, kb, ke, yi0, yi1,
+                                                       yi2, ci, delta, one_eth);
+        W[i] = 0.25 * ci * q.w;
+        return RowSums{q.a0, q.a1, q.a2, q.smax};
+      } else {
+        return row_force_sums<D, S>(yp, nbr, inv_len, beta, kb, ke, yi0, yi1, yi2, ci, delta,
+                                    one_eth);
+      }
+    };
+    RowSums sums = sweep();
     if (sums.smax > s0) {
       // Rare: some bond of this node breaks now. Break them, then sum the rest again.
       double bw = 0;
@@ -139,12 +184,8 @@ std::size_t forces_kernel(NodeSet& ns, BondFamilies& bf, bool allow_breaking,
       }
       ns.broken_weight[i] += bw;
       broken_total += nb;
-      if (nb > 0)
-        sums = row_force_sums<D, S>(yp, nbr, inv_len, beta, kb, ke, yi0, yi1, yi2, ci, delta, one_eth);
+      if (nb > 0) sums = sweep();
     }
-    if constexpr (E)
-      W[i] = 0.25 * ci *
-             row_energy_sum<D, S>(yp, nbr, inv_len, beta, kb, ke, yi0, yi1, yi2, delta, one_eth);
     f0[i] = sums.a0;
     if constexpr (D > 1) f1[i] = sums.a1;
     if constexpr (D > 2) f2[i] = sums.a2;
