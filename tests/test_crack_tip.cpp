@@ -48,6 +48,29 @@ TEST(CrackTip, FirstAdvanceAndInitiationFollowTheTipPastTheOrigin) {
   EXPECT_EQ(tr.initiation_time(), 3.0);
 }
 
+TEST(CrackTip, GrowthCountsFromThePreCracksOwnBandWhenItReachesPastTheOrigin) {
+  // A pre-crack tip inside a refined zone: its own damaged band already reaches half a spacing
+  // past the origin in the initial state. The crack starts when the tip moves beyond that.
+  CrackTipOptions o;
+  o.origin = {4.0, 0.0, 0.0};
+  o.direction = {1.0, 0.0, 0.0};
+  o.advance = 2.0;
+  CrackTipTracker tr(o);
+  NodeSet ns = row();
+  crack_up_to(ns, 4.5);
+  ASSERT_TRUE(tr.observe(ns, 0.0));
+  EXPECT_FALSE(tr.first_advance_time());
+  ASSERT_TRUE(tr.observe(ns, 1.0));
+  EXPECT_FALSE(tr.first_advance_time());
+  crack_up_to(ns, 5.5);
+  ASSERT_TRUE(tr.observe(ns, 2.0));
+  EXPECT_EQ(tr.first_advance_time(), 2.0);
+  EXPECT_FALSE(tr.initiation_time());  // 1 past the band's end, less than `advance`
+  crack_up_to(ns, 7.5);                 // 3 past it
+  ASSERT_TRUE(tr.observe(ns, 3.0));
+  EXPECT_EQ(tr.initiation_time(), 3.0);
+}
+
 TEST(CrackTip, MirrorAsymmetryIsTheHausdorffDistanceBetweenTheMirroredBranches) {
   // Two branches leaving the crack line at x = 2: nodes at (2 + k, +-0.5 k), k = 1..4, plus the
   // pre-crack's cracked nodes on the line. Symmetric: 0. Moving the last upper node up by 0.3

@@ -64,11 +64,14 @@ std::optional<TipSample> CrackTipTracker::observe(const NodeSet& ns, double t) {
       best_i = i;
     }
   }
+  // Only the first observation (the initial state) sets where growth counts from.
+  const bool first_call = !start_advance_;
+  if (first_call) start_advance_ = best_i == ns.size() ? 0.0 : std::max(0.0, best);
   if (best_i == ns.size()) return std::nullopt;
   TipSample s{t, {ns.x[0][best_i], ns.x[1][best_i], ns.x[2][best_i]}, best};
   samples_.push_back(s);
-  if (!first_advance_ && s.advance > 0) first_advance_ = t;
-  if (!initiation_ && s.advance > opt_.advance) initiation_ = t;
+  if (!first_advance_ && s.advance > *start_advance_) first_advance_ = t;
+  if (!initiation_ && s.advance > *start_advance_ + opt_.advance) initiation_ = t;
   if (!window_start_) window_start_ = s;
   if (t - window_start_->time >= opt_.window * (1 - 1e-9)) {
     const double v = norm(sub(s.position, window_start_->position)) / (t - window_start_->time);

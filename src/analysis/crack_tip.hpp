@@ -73,6 +73,9 @@ class CrackTipTracker {
   double current_speed_ = 0;
   std::optional<double> initiation_;
   std::optional<double> first_advance_;
+  // Advance at the first observation (the initial state): where a pre-crack's own damage band
+  // already reaches past the origin (a pre-crack tip in a refined zone) growth counts from there.
+  std::optional<double> start_advance_;
   std::optional<double> branching_time_;
   std::optional<Vec3> branching_point_;
   std::optional<double> separation_time_;

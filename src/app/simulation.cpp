@@ -201,9 +201,12 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
   if (dk.adapt.enabled && !dk.allow_unstable_time_step) {
     // The stable step scales with the horizon (sum_j C_ij V_j ~ c delta^(dim-1) ~ 1/delta^2):
     // check the finest level now rather than when the first refinement happens.
+    // Relative to the horizon of the node that limits the step now: after an initial refinement
+    // that node may already be on a finer level.
+    const double h_lim = ns.horizon[ts.limiting_node];
     double ratio = 1.0;
     for (int l = 1; l <= dk.adapt.max_level; ++l)
-      ratio = std::min(ratio, level_horizon(m, dk.adapt, l) / m.horizon);
+      ratio = std::min(ratio, level_horizon(m, dk.adapt, l) / h_lim);
     if (ts.dt > ts.dt_crit * ratio * (1 + 1e-9))
       throw DeckError(dk.file, 0, 0, "solver.time_step",
                       fmt::format("{:.4g} s exceeds the stable step expected at refinement level "
