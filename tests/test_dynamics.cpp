@@ -1,6 +1,8 @@
 // Explicit dynamics: momentum conservation, energy conservation, wave arrival, stability.
 #include <gtest/gtest.h>
 
+#include <fmt/core.h>
+
 #include <cmath>
 
 #include "analysis/energy.hpp"
@@ -138,5 +140,32 @@ TEST(Dynamics, BobaruWaveArrivalTimesMatchTableIV) {
     const WaveArrival a = bobaru_wave_arrival(r.nodes, r.delta);
     EXPECT_NEAR(a.time / r.arrival, 1.0, 1e-3) << r.nodes << " nodes";
     EXPECT_NEAR(a.amplitude / 0.01, 1.0, 0.01) << r.nodes << " nodes";
+  }
+}
+
+TEST(Dynamics, AdaptiveStepCheckCountsAnInitialRefinementOnce) {
+  // A plate (bound about 213 ns on its 1 mm grid) refined to level 2 at its centre before the run,
+  // with max_level 2 (delta-scaling: the level-2 bound about 53 ns). 40 ns is stable on the
+  // refined grid and must be accepted; 60 ns must be refused with the key. (The check used to
+  // apply the 1/4 of level 2 to a bound that already came from the level-2 nodes.)
+  auto deck = [](double dt) {
+    return "model: {dimension: 2, plane: stress}\n"
+           "material: {youngs_modulus: 72.0e9, density: 2440, fracture_energy: 135}\n"
+           "discretization: {spacing: 0.001, horizon_factor: 3, body: {box: {min: [0, 0], max: "
+           "[0.02, 0.02]}}}\n"
+           "damage: {enabled: false}\n"
+           "adapt: {max_level: 2, energy_trigger: 0.7, initial_refinement: [{region: {box: {min: "
+           "[0.008, 0.008], max: [0.012, 0.012]}}, level: 2}]}\n"
+           "solver: {steps: 2, time_step: " + fmt::format("{:.3e}", dt) + "}\n";
+  };
+  RunOptions ro;
+  ro.write_files = false;
+  ro.quiet = true;
+  EXPECT_NO_THROW(run_simulation(test::deck_from(deck(40e-9)), ro));
+  try {
+    run_simulation(test::deck_from(deck(60e-9)), ro);
+    FAIL() << "60 ns accepted";
+  } catch (const DeckError& e) {
+    EXPECT_EQ(e.key(), "solver.time_step");
   }
 }
