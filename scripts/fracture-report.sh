@@ -2,7 +2,8 @@
 # Runs the dynamic-fracture studies of the PhD thesis (ch. 6) and writes a Markdown report with
 # our numbers beside the published ones, damage pictures, tip-speed CSVs and plots:
 #   out/report/README.md
-# Crack branching 6.1: uniform level 0 (1 mm), uniform level 1 (0.5 mm), adaptive 0 -> 1;
+# Crack branching 6.1: uniform level 0 (1 mm), uniform level 1 (0.5 mm), adaptive 0 -> 1; beyond the
+# thesis, adaptive 0 -> 2 against uniform level 2 (0.25 mm);
 # Kalthoff-Winkler 6.2: adaptive level 1, level 2 and the energy trigger alone at both levels; 3D branching (end
 # of 6.1): adaptive level 1. Both 2D branching studies also at the printed 22 MPa. Plate with a
 # hole 6.3: models A, B, C (h = 15, 10, 5 mm).
@@ -38,6 +39,13 @@ for k in 1 2 3; do
   run "timing/adaptive_$k" examples/crack_branching_2d_adaptive.yaml
   run "timing/adaptive_1rate_$k" "$out/crack_branching_2d_adaptive_single_rate.yaml"
 done
+# Beyond the thesis: AGRS over two levels (four-rate and single-rate stepping) against the uniform
+# level-2 grid.
+sed '/multirate: true/d; /multirate_ratio/d' examples/crack_branching_2d_adaptive_L2.yaml \
+  > "$out/crack_branching_2d_adaptive_L2_single_rate.yaml"
+run branching_L2 examples/crack_branching_2d_L2.yaml
+run branching_adaptive_L2 examples/crack_branching_2d_adaptive_L2.yaml
+run branching_adaptive_L2_1rate "$out/crack_branching_2d_adaptive_L2_single_rate.yaml"
 run branching_L0_22MPa "$out/crack_branching_2d_level0_22MPa.yaml"
 run branching_L1_22MPa "$out/crack_branching_2d_22MPa.yaml"
 run branching_adaptive_22MPa "$out/crack_branching_2d_adaptive_22MPa.yaml"
@@ -140,7 +148,19 @@ row() {  # name label published...
   tl1=$(best L1); ta=$(best adaptive); ta1=$(best adaptive_1rate)
   echo "Wall time, smallest of three alternating runs each: uniform level 1 $(f2 "$tl1") s, adaptive $(f2 "$ta") s (two-rate) and $(f2 "$ta1") s (single rate). Adaptive / uniform level 1: $(awk -v a="$ta" -v u="$tl1" 'BEGIN { printf "%.2f", a / u }') two-rate, $(awk -v a="$ta1" -v u="$tl1" 'BEGIN { printf "%.2f", a / u }') single rate (thesis 0.36, single rate). Bond evaluations adaptive / uniform level 1: $(awk -v a="$(num branching_adaptive bond_evaluations)" -v u="$(num branching_L1 bond_evaluations)" 'BEGIN { printf "%.3f", a / u }') two-rate, $(awk -v a="$(num branching_adaptive_1rate bond_evaluations)" -v u="$(num branching_L1 bond_evaluations)" 'BEGIN { printf "%.3f", a / u }') single rate. Two-rate stepping (solver.multirate): nodes whose own stable step allows 2 dt (here the level-0 nodes) take it, the refined ones the thesis' 50 ns."
   echo
-  for n in branching_L0 branching_L1 branching_adaptive branching_adaptive_1rate branching_L0_22MPa branching_L1_22MPa branching_adaptive_22MPa; do
+  echo "### Beyond the thesis: AGRS 0 -> 2"
+  echo
+  echo "The thesis refines this benchmark by one level. [crack_branching_2d_adaptive_L2.yaml](../../examples/crack_branching_2d_adaptive_L2.yaml) goes to level 2 (0.25 mm, delta 0.75 mm, dt 25 ns) with the pre-crack tip refined from the start, against the uniform 0.25 mm grid ([crack_branching_2d_L2.yaml](../../examples/crack_branching_2d_L2.yaml), 64,000 nodes). Four-rate stepping (multirate_ratio: 4): each node takes the longest of 1-4 dt its own stable step allows."
+  echo
+  echo "| run | nodes (final) | t_i (us) | t_b (us) | l_b (mm) | mean tip speed (m/s) | branch asymmetry (mm) | wall (s) | published |"
+  echo "|---|---|---|---|---|---|---|---|---|"
+  row branching_L2 "uniform level 2 (0.25 mm)" "- (not in the thesis)"
+  row branching_adaptive_L2 "adaptive 0 -> 2 (four-rate stepping)" "-"
+  row branching_adaptive_L2_1rate "adaptive 0 -> 2 (single rate)" "-"
+  echo
+  echo "Adaptive / uniform level 2: wall $(awk -v a="$(num branching_adaptive_L2 wall_time_s)" -v u="$(num branching_L2 wall_time_s)" 'BEGIN { printf "%.2f", a / u }') four-rate, $(awk -v a="$(num branching_adaptive_L2_1rate wall_time_s)" -v u="$(num branching_L2 wall_time_s)" 'BEGIN { printf "%.2f", a / u }') single rate (one run each); bond evaluations $(awk -v a="$(num branching_adaptive_L2 bond_evaluations)" -v u="$(num branching_L2 bond_evaluations)" 'BEGIN { printf "%.3f", a / u }') and $(awk -v a="$(num branching_adaptive_L2_1rate bond_evaluations)" -v u="$(num branching_L2 bond_evaluations)" 'BEGIN { printf "%.3f", a / u }')."
+  echo
+  for n in branching_L0 branching_L1 branching_adaptive branching_adaptive_1rate branching_L2 branching_adaptive_L2 branching_adaptive_L2_1rate branching_L0_22MPa branching_L1_22MPa branching_adaptive_22MPa; do
     echo "### $n"
     echo
     pictures "$n"
