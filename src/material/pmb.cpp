@@ -15,7 +15,7 @@ inline double g(double t) {
 }
 
 struct RowSums {
-  double a0, a1, a2, smax;
+  double a0, a1, a2, smax, w;
 };
 
 // Forces of the intact bonds of one row and their largest stretch; nothing is written per bond.
@@ -23,12 +23,16 @@ struct RowSums {
 // the state only, not on the pass that found a bond broken (a refresh of some rows then
 // reproduces a full pass bit for bit). A free function with local accumulators: as a lambda
 // with captures GCC 12 no longer vectorizes it (2.6x slower).
-template <int D, InfluenceShape S>
+// E: in the same sweep also w = sum of g beta V s^2 xi over the intact bonds (4 W_i / c_i), when
+// energies are asked for. The extra reduction leaves the force sums as they vectorize without it:
+// the forces come out bit for bit the same (tests/test_energy_density.cpp), so they do not
+// depend on when energies are asked for.
+template <int D, InfluenceShape S, bool E = false>
 inline RowSums row_force_sums(const double* yp, const std::uint32_t* nbr, const double* inv_len,
                               const float* beta, std::uint64_t kb, std::uint64_t ke, double yi0,
                               double yi1, double yi2, double ci, double delta, double one_eth) {
-  double a0 = 0, a1 = 0, a2 = 0, smax = -INFINITY;
-#pragma omp simd reduction(+ : a0, a1, a2) reduction(max : smax)
+  double a0 = 0, a1 = 0, a2 = 0, smax = -INFINITY, w = 0;
+#pragma omp simd reduction(+ : a0, a1, a2, w) reduction(max : smax)
   for (std::uint64_t k = kb; k < ke; ++k) {
     // 64-bit index arithmetic: a 32-bit 4*j would have to wrap and defeats the gathers.
     const std::size_t j = 4 * static_cast<std::size_t>(nbr[k]);
@@ -50,44 +54,9 @@ inline RowSums row_force_sums(const double* yp, const std::uint32_t* nbr, const 
     a0 += fr * d0;
     a1 += fr * d1;
     a2 += fr * d2;
+    if constexpr (E) w += gw * s * s / ail;
   }
-  return RowSums{a0, a1, a2, smax};
-}
-
-// The same force sums with, on the way, the sum over the intact bonds of g beta V s^2 xi
-// (4 W_i / c_i): one sweep of the row when energies are asked for. The force lines are those of
-// row_force_sums, and the extra reduction does not change how they vectorize: the forces come out
-// bit for bit the same (tests/test_pmb.cpp), so they do not depend on when energies are asked for.
-struct RowSumsW {
-  double a0, a1, a2, smax, w;
-};
-template <int D, InfluenceShape S>
-inline RowSumsW row_force_energy_sums(const double* yp, const std::uint32_t* nbr,
-                                      const double* inv_len, const float* beta, std::uint64_t kb,
-                                      std::uint64_t ke, double yi0, double yi1, double yi2,
-                                      double ci, double delta, double one_eth) {
-  double a0 = 0, a1 = 0, a2 = 0, smax = -INFINITY, w = 0;
-#pragma omp simd reduction(+ : a0, a1, a2, w) reduction(max : smax)
-  for (std::uint64_t k = kb; k < ke; ++k) {
-    const std::size_t j = 4 * static_cast<std::size_t>(nbr[k]);
-    const double d0 = yp[j] - yi0;
-    const double d1 = D > 1 ? yp[j + 1] - yi1 : 0.0;
-    const double d2 = D > 2 ? yp[j + 2] - yi2 : 0.0;
-    const double r = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2);
-    const double ail = std::abs(inv_len[k]);
-    const double bb = beta[k];
-    const double bp = 0.5 * (bb + std::abs(bb));
-    double gw = bp * yp[j + 3];
-    if constexpr (S != InfluenceShape::Constant) gw *= g<S>(1.0 / (ail * delta));
-    const double s = r * ail - one_eth;
-    smax = std::max(smax, bp > 0.0 ? s : -INFINITY);
-    const double fr = ci * gw * (ail - one_eth / r);
-    a0 += fr * d0;
-    a1 += fr * d1;
-    a2 += fr * d2;
-    w += gw * s * s / ail;
-  }
-  return RowSumsW{a0, a1, a2, smax, w};
+  return RowSums{a0, a1, a2, smax, w};
 }
 
 // sum over the intact bonds of one row of g beta V s^2 xi (broken ones weigh 0, branch-free so
@@ -147,17 +116,12 @@ std::size_t forces_kernel(NodeSet& ns, BondFamilies& bf, bool allow_breaking,
     const double s0 = (allow_breaking && !(flags[i] & kNoFail)) ? ns.critical_stretch[i] : INFINITY;
     const double delta = ns.horizon[i];
     const std::uint64_t kb = off[i], ke = ends[i];
-    // With energies asked for, one sweep gives both (row_force_energy_sums).
+    // With energies asked for, one sweep gives both.
     auto sweep = [&]() {
-      if constexpr (E) {
-        const RowSumsW q = row_force_energy_sums<D, S>(yp, nbr, inv_len, beta, kb, ke, yi0, yi1,
-                                                       yi2, ci, delta, one_eth);
-        W[i] = 0.25 * ci * q.w;
-        return RowSums{q.a0, q.a1, q.a2, q.smax};
-      } else {
-        return row_force_sums<D, S>(yp, nbr, inv_len, beta, kb, ke, yi0, yi1, yi2, ci, delta,
-                                    one_eth);
-      }
+      const RowSums q = row_force_sums<D, S, E>(yp, nbr, inv_len, beta, kb, ke, yi0, yi1, yi2, ci,
+                                                delta, one_eth);
+      if constexpr (E) W[i] = 0.25 * ci * q.w;
+      return q;
     };
     RowSums sums = sweep();
     if (sums.smax > s0) {
