@@ -167,9 +167,11 @@ bool Adaptor::step() {
   if (!live) return vv_.step();
   const NodeSet& ns = m_.nodes;
   // The energy trigger reads W from the force pass of its check step instead of a second loop
-  // over the bonds (and only there: the other steps run the plain force kernel).
+  // over the bonds (and only there: the other steps run the plain force kernel). With multi-rate
+  // stepping each row's W comes from its own latest pass: a slow row's is at most k - 1 steps
+  // old, as are its forces, and the rows idle at the check step need no pass of their own.
   const bool check = spec_.energy_fraction && (vv_.step_count() + 1) % spec_.check_every == 0;
-  if (check) vv_.request_energy_at(vv_.step_count() + 1);
+  if (check && !vv_.multirate()) vv_.request_energy_at(vv_.step_count() + 1);
   if (spec_.damage_trigger) {
     vv_.set_undo(true);
     // Each pass refines by at most one level, so max_level + 1 passes always suffice.
@@ -201,7 +203,7 @@ bool Adaptor::step() {
     return false;
   }
   if (check) {
-    if (const std::vector<double>* w = vv_.energy_density_now())
+    if (const std::vector<double>* w = vv_.energy_density_recent())
       W_ = *w;
     else
       energy_density(m_, W_);

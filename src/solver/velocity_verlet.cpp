@@ -227,13 +227,17 @@ void VelocityVerlet::compute_accelerations(const std::vector<std::uint32_t>* row
                        &idle_rows_);
   }
   energy_step_ = want_energy && (!partial || energy_kept) ? step_ : -1;
+  // Multi-rate: every pass also writes its rows' densities (the same sweep), so that each row
+  // holds the one of its own latest pass (energy_density_recent()).
+  const bool keep_recent = multirate_;
   std::vector<std::uint64_t>* log = undo_enabled_ ? &saved_.broken_log : nullptr;
   if (partial) {
     broken_total_ += internal_forces_rows(m_, m_.damage_enabled, *rows, log,
-                                          energy_kept ? &energy_ : nullptr);
+                                          energy_kept || keep_recent ? &energy_ : nullptr);
     for (std::uint32_t i : *rows) bond_evals_ += static_cast<double>(m_.bonds.end(i) - m_.bonds.begin(i));
   } else {
-    broken_total_ += internal_forces(m_, m_.damage_enabled, log, want_energy ? &energy_ : nullptr);
+    broken_total_ += internal_forces(m_, m_.damage_enabled, log,
+                                     want_energy || keep_recent ? &energy_ : nullptr);
     bond_evals_ += static_cast<double>(m_.bonds.num_bonds());
   }
   const std::size_t n = partial ? rows->size() : ns.size();

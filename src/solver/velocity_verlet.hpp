@@ -70,6 +70,13 @@ class VelocityVerlet {
   void synchronize_velocities();
   // Per node: its step in units of dt (empty without multi-rate stepping).
   const std::vector<std::uint8_t>& rates() const { return rate_; }
+  // Multi-rate stepping: every row's density from its own latest force pass (a slow row's is up
+  // to k - 1 steps old, as its forces are), with no extra pass over the rows idle this step.
+  // Single rate: energy_density_now().
+  const std::vector<double>* energy_density_recent() const {
+    if (multirate_ && energy_.size() == m_.nodes.size()) return &energy_;
+    return energy_density_now();
+  }
   // The energy densities of the current state when a force pass computed them, else nullptr.
   const std::vector<double>* energy_density_now() const {
     return energy_step_ == step_ && energy_.size() == m_.nodes.size() ? &energy_ : nullptr;
