@@ -111,7 +111,7 @@ void VelocityVerlet::classify_rates(const std::vector<std::uint32_t>* rows) {
       // of r dt / 2) v is the velocity at r/2 steps in; shifted to now, to first order (unless
       // synchronize_velocities() did so already).
       const long p = step_ % r;
-      if (p != 0 && !synced_)
+      if (p != 0 && !syncing_)
         for (int d = 0; d < ns.dim; ++d)
           ns.v[d][i] -= (0.5 * r - static_cast<double>(p)) * dt_ * ns.a[d][i];
       rate_[i] = 1;
@@ -150,9 +150,9 @@ void VelocityVerlet::rebuild_rate_rows() {
 }
 
 void VelocityVerlet::synchronize_velocities() {
-  if (!multirate_ || synced_) return;
-  synced_ = true;
-  synced_shift_.clear();
+  if (!multirate_ || syncing_) return;
+  syncing_ = true;
+  synced_.clear();
   NodeSet& ns = m_.nodes;
   // Rate 2 needs nothing: one step into its cycle, v is already the velocity of now.
   for (int k = 3; k <= kMaxRateRatio; ++k) {
@@ -160,12 +160,8 @@ void VelocityVerlet::synchronize_velocities() {
     if (p == 0) continue;
     const double c = (0.5 * k - static_cast<double>(p)) * dt_;
     for (std::uint32_t i : class_rows_[static_cast<std::size_t>(k)]) {
-      SyncShift q{i, static_cast<std::uint8_t>(k), {0, 0, 0}};
-      for (int d = 0; d < ns.dim; ++d) {
-        q.dv[static_cast<std::size_t>(d)] = c * ns.a[d][i];
-        ns.v[d][i] -= q.dv[static_cast<std::size_t>(d)];
-      }
-      synced_shift_.push_back(q);
+      for (int d = 0; d < ns.dim; ++d) ns.v[d][i] -= c * ns.a[d][i];
+      synced_.push_back({i, static_cast<std::uint8_t>(k)});
     }
   }
 }
@@ -306,14 +302,19 @@ void VelocityVerlet::refresh(const std::vector<std::uint32_t>* rows) {
   compute_accelerations(rows);
   // A node's rate changes only with its row (new nodes, rebuilt families, scaled horizons).
   classify_rates(rows);
-  if (synced_) {
-    // Back to the half-step velocities of the nodes that go on with their cycle.
+  if (syncing_) {
+    // The nodes that go on with their cycle get a half-step velocity again, from their
+    // acceleration now: a row the event rebuilt thus runs the rest of its cycle under its new
+    // forces (with the old acceleration it would mix the two over the whole cycle, a first-order
+    // error for cycles of 3 dt or more); for the other rows it is the one taken off.
     NodeSet& ns = m_.nodes;
-    for (const SyncShift& q : synced_shift_)
-      if (rate_[q.node] == q.rate)
-        for (int d = 0; d < ns.dim; ++d) ns.v[d][q.node] += q.dv[static_cast<std::size_t>(d)];
-    synced_shift_.clear();
-    synced_ = false;
+    for (const Synced& q : synced_)
+      if (rate_[q.node] == q.rate) {
+        const double c = (0.5 * q.rate - static_cast<double>(step_ % q.rate)) * dt_;
+        for (int d = 0; d < ns.dim; ++d) ns.v[d][q.node] += c * ns.a[d][q.node];
+      }
+    synced_.clear();
+    syncing_ = false;
   }
   last_power_ = external_power();
 }

@@ -66,7 +66,8 @@ class VelocityVerlet {
   // Before an event changes the grid: puts the velocity of now on every node that is inside a
   // cycle of 3 dt or more (it holds the velocity of its cycle's middle), so that new nodes
   // interpolate, and the event's momentum and kinetic energy use, one instant. refresh() gives
-  // the nodes that go on with their cycle their half-step velocity back.
+  // the nodes that go on with their cycle a half-step velocity again, from their acceleration
+  // after the event.
   void synchronize_velocities();
   // Per node: its step in units of dt (empty without multi-rate stepping).
   const std::vector<std::uint8_t>& rates() const { return rate_; }
@@ -120,13 +121,12 @@ class VelocityVerlet {
   std::array<std::vector<std::uint32_t>, kMaxRateRatio + 1> class_rows_;  // active nodes by rate
   std::vector<std::uint32_t> pass_rows_, idle_rows_;  // this step's force rows, and the others
   bool full_pass_ = true;                             // every active row is due this step
-  struct SyncShift {
+  struct Synced {
     std::uint32_t node;
     std::uint8_t rate;
-    std::array<double, 3> dv;
   };
-  std::vector<SyncShift> synced_shift_;  // what synchronize_velocities() took off
-  bool synced_ = false;
+  std::vector<Synced> synced_;  // nodes synchronize_velocities() put on the velocity of now
+  bool syncing_ = false;
   std::array<double, kMaxRateRatio + 1> open_kick_{}, close_kick_{};
   std::vector<long> energy_requests_;  // steps whose force passes also compute energies
   std::vector<double> energy_;
