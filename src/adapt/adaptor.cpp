@@ -3,7 +3,6 @@
 #include <fmt/core.h>
 
 #include <algorithm>
-#include <cstdlib>
 
 #include "adapt/coarsen.hpp"
 #include "analysis/energy.hpp"
@@ -172,7 +171,7 @@ bool Adaptor::step() {
   // stepping each row's W comes from its own latest pass: a slow row's is at most k - 1 steps
   // old, as are its forces, and the rows idle at the check step need no pass of their own.
   const bool check = spec_.energy_fraction && (vv_.step_count() + 1) % spec_.check_every == 0;
-  if (check && (!vv_.multirate() || std::getenv("EXACTW"))) vv_.request_energy_at(vv_.step_count() + 1);
+  if (check && !vv_.multirate()) vv_.request_energy_at(vv_.step_count() + 1);
   if (spec_.damage_trigger) {
     vv_.set_undo(true);
     // Each pass refines by at most one level, so max_level + 1 passes always suffice.
