@@ -66,6 +66,14 @@ Outcome run_plate(double dt, double t_end, bool multirate, double safety, int ra
   return r;
 }
 
+// A multi-rate solver on the refined plate at 0.3 of its fine nodes' stable step, initialized.
+VelocityVerlet plate_solver(Model& m, double safety, int ratio) {
+  VelocityVerlet vv(m, 0.3 * stable_time_step(m).dt);
+  vv.set_multirate(safety, ratio);
+  vv.initialize();
+  return vv;
+}
+
 double rel_diff(const std::vector<double>& a, const std::vector<double>& b) {
   double num = 0, den = 0;
   for (std::size_t k = 0; k < a.size(); ++k) num += (a[k] - b[k]) * (a[k] - b[k]), den += b[k] * b[k];
@@ -212,10 +220,7 @@ TEST(Multirate, TriggerEnergiesComeFromEachRowsOwnLatestPass) {
   // The energy trigger reads energy_density_recent(): the fast rows' densities of this very state,
   // the slow rows' those of their own latest pass (one step old here), with no extra pass.
   Model m = refined_plate();
-  const double dt = 0.3 * stable_time_step(m).dt;
-  VelocityVerlet vv(m, dt);
-  vv.set_multirate(0.5, 2);
-  vv.initialize();
+  VelocityVerlet vv = plate_solver(m, 0.5, 2);
   for (int s = 0; s < 40; ++s) ASSERT_TRUE(vv.step());  // step 40 closes every 2 dt step
   std::vector<double> w_then, w_now;
   energy_density(m, w_then);
@@ -242,10 +247,7 @@ TEST(Multirate, TriggerEnergiesComeFromEachRowsOwnLatestPass) {
 TEST(Multirate, EachRowIsSummedOncePerItsOwnStep) {
   // Rates 1 to 4 on one grid: over a cycle of 12 steps a row of rate k is summed 12 / k times.
   Model m = refined_plate();
-  const double dt = 0.3 * stable_time_step(m).dt;
-  VelocityVerlet vv(m, dt);
-  vv.set_multirate(0.5, 4);
-  vv.initialize();
+  VelocityVerlet vv = plate_solver(m, 0.5, 4);
   std::array<double, 5> rows{};
   std::array<std::size_t, 5> count{};
   for (std::size_t i = 0; i < m.nodes.size(); ++i)
@@ -262,10 +264,7 @@ TEST(Multirate, EachRowIsSummedOncePerItsOwnStep) {
 
 TEST(Multirate, SlowRowsAreSummedEveryOtherStepOnly) {
   Model m = refined_plate();
-  const double dt = 0.3 * stable_time_step(m).dt;
-  VelocityVerlet vv(m, dt);
-  vv.set_multirate(0.5);
-  vv.initialize();
+  VelocityVerlet vv = plate_solver(m, 0.5, 2);
   double all = 0, fast = 0;
   for (std::size_t i = 0; i < m.nodes.size(); ++i) {
     if (!(m.nodes.flags[i] & kActive)) continue;
@@ -389,8 +388,9 @@ double event_effect_error(double dt) {
       vv.refresh(&rows);
     }
     for (long s = 0; s < 2 * sub; ++s) EXPECT_TRUE(vv.step());
-    if (multi)
+    if (multi) {
       for (std::uint32_t i : rows) EXPECT_EQ(vv.rates()[i], 3) << i;
+    }
     std::vector<double> v;
     for (std::uint32_t i : rows)
       for (int d = 0; d < 2; ++d) v.push_back(m.nodes.v[d][i]);
