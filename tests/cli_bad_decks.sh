@@ -13,7 +13,7 @@ check negative_modulus.yaml "negative_modulus.yaml:3:19: key 'material.youngs_mo
 check malformed.yaml "malformed.yaml:4:"
 check overlay_dual_horizon.yaml "overlay_dual_horizon.yaml:5:3: key 'damage': the refinement overlay works with bond_pairing: source_horizon"
 check overlay_sampling.yaml "overlay_sampling.yaml:5:29: key 'damage.overlay.sampling': 'everywhere' is not allowed; allowed: three_pairs, whole_bond"
-check multirate_lps.yaml "multirate_lps.yaml:7:14: key 'solver.multirate': two-rate stepping needs row-local forces: formulation: pmb"
+check multirate_lps.yaml "multirate_lps.yaml:7:14: key 'solver.multirate': multi-rate stepping needs row-local forces: formulation: pmb"
 check body_outside.yaml "body_outside.yaml:5:9: key 'discretization.body': the body cannot be an outside (complement) region"
 out=$("$bin" check "$dir/does_not_exist.yaml" 2>&1); rc=$?
 [[ $rc -eq 2 && "$out" == *"cannot open"* ]] && echo "ok   missing file: $out" || { echo "FAIL missing file: $rc $out"; fail=1; }

@@ -389,7 +389,7 @@ Deck parse_deck(const std::string& text, const std::string& name) {
         return (v >= 2 && v <= 4) ? std::string() : std::string("an integer 2, 3 or 4");
       }));
       if (dk.multirate && dk.formulation == "lps")
-        s.fail("multirate", "two-rate stepping needs row-local forces: formulation: pmb (the LPS "
+        s.fail("multirate", "multi-rate stepping needs row-local forces: formulation: pmb (the LPS "
                             "dilatation couples every node to its neighbours' rows)");
       if (s.has("end_time") == s.has("steps"))
         s.fail("", "give exactly one of end_time (s) or steps");
@@ -403,7 +403,7 @@ Deck parse_deck(const std::string& text, const std::string& name) {
         s.choice("bond_pairing", {"source_horizon", "dual_horizon"}, "source_horizon") ==
         "dual_horizon";
     if (dk.multirate && dk.dual_horizon)
-      s.fail("multirate", "two-rate stepping needs bond_pairing: source_horizon (dual-horizon "
+      s.fail("multirate", "multi-rate stepping needs bond_pairing: source_horizon (dual-horizon "
                           "forces act on both ends of a bond)");
     s.finish();
   }

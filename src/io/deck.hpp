@@ -87,7 +87,8 @@ struct Deck {
   std::optional<double> time_step;
   double safety = 0.8;
   bool allow_unstable_time_step = false;
-  // Two-rate stepping: nodes whose own stable step allows 2 dt take it (VelocityVerlet).
+  // Multi-rate stepping: nodes whose own stable step allows k dt (k <= multirate_ratio) take it
+  // (VelocityVerlet).
   bool multirate = false;
   int multirate_ratio = 2;  // the longest node step, in units of dt
   double end_time = 0.0;
