@@ -73,12 +73,16 @@ TEST(Threads, AdaptiveResultsDoNotDependOnThreadCount) {
   }
 }
 
-TEST(Threads, TwoRateAdaptiveResultsDoNotDependOnThreadCount) {
-  // AGRS with two-rate stepping: the partial force passes over the fast rows, the slow rows'
-  // energy pass and the steps undone in the middle of a slow node's 2 dt step.
-  expect_same_with_1_and_2_threads(branching_plate(
-      "adapt: {max_level: 1, start_time: 4.0e-6, energy_trigger: 0.7, damage_trigger: true}\n",
-      "source_horizon", ", multirate: true"));
+TEST(Threads, MultiRateAdaptiveResultsDoNotDependOnThreadCount) {
+  // AGRS with multi-rate stepping: the partial force passes, the idle rows' energy pass, the steps
+  // undone in the middle of a slow node's cycle and, with ratio 3 (the coarse nodes on 150 ns),
+  // the velocities synchronized around events.
+  for (const char* rates : {", multirate: true", ", multirate: true, multirate_ratio: 3"}) {
+    SCOPED_TRACE(rates);
+    expect_same_with_1_and_2_threads(branching_plate(
+        "adapt: {max_level: 1, start_time: 4.0e-6, energy_trigger: 0.7, damage_trigger: true}\n",
+        "source_horizon", rates));
+  }
 }
 
 TEST(Threads, OverlayResultsDoNotDependOnThreadCount) {
