@@ -26,6 +26,7 @@
 #include "io/deck.hpp"
 #include "io/deck_error.hpp"
 #include "model/build_model.hpp"
+#include "solver/velocity_verlet.hpp"
 
 using namespace periadapt;
 
@@ -67,10 +68,23 @@ int check(const std::string& path) {
     fmt::print("dt_crit         {:.6e} s (Silling-Askari, node {})\n", ts.dt_crit, ts.limiting_node);
     fmt::print("dt              {:.6e} s{}\n", ts.dt, dk.time_step ? " (deck)" : " (safety x dt_crit)");
     fmt::print("steps           {} (end time {:.6e} s)\n", ts.steps, ts.steps * ts.dt);
-    if (dk.multirate)
+    if (dk.multirate) {
       fmt::print("multi-rate      nodes whose stable step is at least k dt / {:.3g} take k dt, "
                  "k <= {} (solver.multirate)\n",
                  dk.safety, dk.multirate_ratio);
+      // The rates of the initial grid, from the solver itself (on a copy: it writes forces).
+      Model probe = m;
+      VelocityVerlet vv(probe, ts.dt);
+      vv.set_multirate(dk.safety, dk.multirate_ratio);
+      vv.initialize();
+      std::vector<std::size_t> count(static_cast<std::size_t>(dk.multirate_ratio) + 1, 0);
+      for (std::size_t i = 0; i < probe.nodes.size(); ++i)
+        if (probe.nodes.flags[i] & kActive) ++count[vv.rates()[i]];
+      std::string line;
+      for (int k = 1; k <= dk.multirate_ratio; ++k)
+        line += fmt::format("{}{} nodes on {} dt", k > 1 ? ", " : "", count[static_cast<std::size_t>(k)], k);
+      fmt::print("  at t = 0      {}\n", line);
+    }
   }
   for (const BodyLoad& l : m.loads)
     fmt::print("load            {}: {} nodes, body force density [{:.4g}, {:.4g}, {:.4g}] N/m^3\n",
