@@ -190,12 +190,16 @@ void VelocityVerlet::prepare_rates() {
     if (s1 % k != 0 && !class_rows_[kk].empty()) full_pass_ = false;
   }
   pass_rows_.clear();
-  if (!full_pass_)
-    for (int k = 1; k <= kMaxRateRatio; ++k)
-      if (s1 % k == 0) {
-        const auto& c = class_rows_[static_cast<std::size_t>(k)];
-        pass_rows_.insert(pass_rows_.end(), c.begin(), c.end());
-      }
+  if (!full_pass_) gather_rows(s1, true, pass_rows_);
+}
+
+void VelocityVerlet::gather_rows(long step, bool due, std::vector<std::uint32_t>& out) const {
+  out.clear();
+  for (int k = 1; k <= kMaxRateRatio; ++k)
+    if ((step % k == 0) == due) {
+      const auto& c = class_rows_[static_cast<std::size_t>(k)];
+      out.insert(out.end(), c.begin(), c.end());
+    }
 }
 
 void VelocityVerlet::compute_accelerations(const std::vector<std::uint32_t>* rows, bool subcycle,
@@ -213,12 +217,7 @@ void VelocityVerlet::compute_accelerations(const std::vector<std::uint32_t>* row
   // A subcycle step: the idle rows' densities at this (drifted) state come from their own pass.
   const bool energy_kept = partial && want_energy && (subcycle || energy_step_ == step_);
   if (subcycle && want_energy) {
-    idle_rows_.clear();
-    for (int k = 2; k <= kMaxRateRatio; ++k)
-      if (step_ % k != 0) {
-        const auto& c = class_rows_[static_cast<std::size_t>(k)];
-        idle_rows_.insert(idle_rows_.end(), c.begin(), c.end());
-      }
+    gather_rows(step_, false, idle_rows_);
     pmb_energy_density(ns, m_.bonds, m_.material.shape, energy_, m_.material.thermal_strain,
                        &idle_rows_);
   }

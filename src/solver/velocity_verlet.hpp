@@ -94,6 +94,8 @@ class VelocityVerlet {
   // this step's kick factors and force rows.
   void prepare_rates();
   void rebuild_rate_rows();
+  // The active rows whose cycle closes at `step` (due) or does not (idle).
+  void gather_rows(long step, bool due, std::vector<std::uint32_t>& out) const;
   // Kick factor of node i from a table of this step's opening or closing kicks per rate.
   double kick(std::size_t i, const std::array<double, kMaxRateRatio + 1>& f) const {
     return rate_.empty() ? 0.5 * dt_ : f[rate_[i]];
