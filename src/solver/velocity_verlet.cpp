@@ -3,11 +3,126 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <type_traits>
 
 #include "material/pmb.hpp"
 #include "solver/internal_forces.hpp"
 
 namespace periadapt {
+
+// The per-node loops of a step, compiled per dimension with their arrays' pointers hoisted (a
+// loop over run-time components reloads every vector's data pointer per node and stays scalar).
+struct StepArrays {
+  const double* x[3];
+  double* u[3];
+  double* v[3];
+  double* a[3];
+  const double* f[3];
+  const double* body[3];
+  double* keep_u[3];  // the state an undo needs, when kept
+  double* keep_v[3];
+  double* keep_a[3];
+  double* cur;
+  const double* density;
+  const std::uint8_t* rate;  // null: every node on dt
+};
+
+namespace {
+
+// Opening half-kick (kick[rate] or half_dt) and drift of every node; returns the number of
+// displacement components beyond `lim` or non-finite.
+template <int D, bool Keep, bool Multi>
+std::size_t kick_drift(const StepArrays& s, std::size_t n, const double* kick, double half_dt,
+                       double dt, double lim) {
+  const double* x[D];
+  double *u[D], *v[D], *ku[D], *kv[D], *ka[D];
+  const double* a[D];
+  for (int d = 0; d < D; ++d) {
+    x[d] = s.x[d], u[d] = s.u[d], v[d] = s.v[d], a[d] = s.a[d];
+    ku[d] = s.keep_u[d], kv[d] = s.keep_v[d], ka[d] = s.keep_a[d];
+  }
+  double* cur = s.cur;
+  const std::uint8_t* rate = s.rate;
+  std::size_t bad = 0;
+#pragma omp parallel for simd schedule(static) reduction(+ : bad)
+  for (std::size_t i = 0; i < n; ++i) {
+    const double c = Multi ? kick[rate[i]] : half_dt;
+    for (int d = 0; d < D; ++d) {
+      if constexpr (Keep) {
+        ku[d][i] = u[d][i];
+        kv[d][i] = v[d][i];
+        ka[d][i] = a[d][i];
+      }
+      const double vi = v[d][i] + c * a[d][i];
+      const double ui = u[d][i] + dt * vi;
+      v[d][i] = vi;
+      u[d][i] = ui;
+      cur[4 * i + d] = x[d][i] + ui;
+      bad += !(std::abs(ui) <= lim);
+    }
+  }
+  return bad;
+}
+
+// a = (f + b) / rho of the listed rows (all nodes without a list), with the closing half-kick
+// (kick[rate] or half_dt) when asked for.
+template <int D, bool Loaded, bool Kick, bool Multi>
+void accelerate(const StepArrays& s, const std::uint32_t* rows, std::size_t n, const double* kick,
+                double half_dt) {
+  double *v[D], *a[D];
+  const double *f[D], *b[D];
+  for (int d = 0; d < D; ++d) v[d] = s.v[d], a[d] = s.a[d], f[d] = s.f[d], b[d] = s.body[d];
+  const double* rho = s.density;
+  const std::uint8_t* rate = s.rate;
+#pragma omp parallel for simd schedule(static)
+  for (std::size_t r = 0; r < n; ++r) {
+    const std::size_t i = rows ? rows[r] : r;
+    const double inv_rho = 1.0 / rho[i];
+    const double c = Kick ? (Multi ? kick[rate[i]] : half_dt) : 0.0;
+    for (int d = 0; d < D; ++d) {
+      const double ai = (f[d][i] + (Loaded ? b[d][i] : 0.0)) * inv_rho;
+      a[d][i] = ai;
+      if constexpr (Kick) v[d][i] += c * ai;
+    }
+  }
+}
+
+// Picks the instantiation for run-time flags: f(std::integral_constant<bool, ...>...).
+template <class F>
+auto with_flags(F&& f, bool b0, bool b1) {
+  using T = std::true_type;
+  using N = std::false_type;
+  if (b0) return b1 ? f(T{}, T{}) : f(T{}, N{});
+  return b1 ? f(N{}, T{}) : f(N{}, N{});
+}
+template <class F>
+auto with_dim(int dim, F&& f) {
+  if (dim == 1) return f(std::integral_constant<int, 1>{});
+  if (dim == 2) return f(std::integral_constant<int, 2>{});
+  return f(std::integral_constant<int, 3>{});
+}
+
+}  // namespace
+
+StepArrays VelocityVerlet::arrays() {
+  NodeSet& ns = m_.nodes;
+  StepArrays s{};
+  for (int d = 0; d < 3; ++d) {
+    s.x[d] = ns.x[d].data();
+    s.u[d] = ns.u[d].data();
+    s.v[d] = ns.v[d].data();
+    s.a[d] = ns.a[d].data();
+    s.f[d] = ns.f[d].data();
+    s.body[d] = body_[d].empty() ? nullptr : body_[d].data();
+    s.keep_u[d] = saved_.u[d].data();
+    s.keep_v[d] = saved_.v[d].data();
+    s.keep_a[d] = saved_.a[d].data();
+  }
+  s.cur = ns.cur.data();
+  s.density = ns.density.data();
+  s.rate = rate_.empty() ? nullptr : rate_.data();
+  return s;
+}
 
 VelocityVerlet::VelocityVerlet(Model& model, double dt) : m_(model), dt_(dt) {
   const NodeSet& ns = m_.nodes;
@@ -241,17 +356,18 @@ void VelocityVerlet::compute_accelerations(const std::vector<std::uint32_t>* row
   // The step's closing half-kick rides along when no constrained component needs its
   // acceleration zeroed first (the kick of a row left out of a partial pass is zero).
   const bool kick_here = closing_kick && fixed_dofs_.empty();
-#pragma omp parallel for schedule(static)
-  for (std::size_t r = 0; r < n; ++r) {
-    const std::size_t i = partial ? (*rows)[r] : r;
-    const double inv_rho = 1.0 / ns.density[i];
-    const double c = kick_here ? kick(i, close_kick_) : 0.0;
-    for (int d = 0; d < dim; ++d) {
-      const double a = (ns.f[d][i] + (loaded ? body_[d][i] : 0.0)) * inv_rho;
-      ns.a[d][i] = a;
-      if (kick_here) ns.v[d][i] += c * a;
-    }
-  }
+  const StepArrays sa = arrays();
+  const std::uint32_t* row_ids = partial ? rows->data() : nullptr;
+  with_dim(dim, [&](auto D) {
+    with_flags(
+        [&](auto L, auto K) {
+          if (sa.rate)
+            accelerate<D(), L(), K(), true>(sa, row_ids, n, close_kick_.data(), 0.5 * dt_);
+          else
+            accelerate<D(), L(), K(), false>(sa, row_ids, n, close_kick_.data(), 0.5 * dt_);
+        },
+        loaded, kick_here);
+  });
   // Constrained components follow their prescribed path: record the reaction density needed.
   for (std::size_t q = 0; q < fixed_dofs_.size(); ++q) {
     const std::size_t i = fixed_dofs_[q] / 3;
@@ -391,27 +507,18 @@ bool VelocityVerlet::step() {
   const double lim = runaway_limit_;
   std::size_t bad = n;
   if (fused) {
-    std::size_t first_bad = n;
-    double* y = ns.cur.data();
-    const bool keep = undo_enabled_;
-#pragma omp parallel for schedule(static) reduction(min : first_bad)
-    for (std::size_t i = 0; i < n; ++i) {
-      const double c = kick(i, open_kick_);
-      for (int d = 0; d < dim; ++d) {
-        if (keep) {
-          saved_.u[d][i] = ns.u[d][i];
-          saved_.v[d][i] = ns.v[d][i];
-          saved_.a[d][i] = ns.a[d][i];
-        }
-        const double v = ns.v[d][i] + c * ns.a[d][i];
-        const double u = ns.u[d][i] + dt * v;
-        ns.v[d][i] = v;
-        ns.u[d][i] = u;
-        y[4 * i + d] = ns.x[d][i] + u;
-        if (!(std::abs(u) <= lim)) first_bad = std::min(first_bad, i);
-      }
-    }
-    bad = first_bad;
+    const StepArrays sa = arrays();
+    const std::size_t nbad = with_dim(dim, [&](auto D) {
+      return with_flags(
+          [&](auto K, auto M) {
+            return kick_drift<D(), K(), M()>(sa, n, open_kick_.data(), hdt, dt, lim);
+          },
+          undo_enabled_, sa.rate != nullptr);
+    });
+    // Rare: find the first offending node for the diagnosis.
+    for (std::size_t i = 0; nbad > 0 && i < n && bad == n; ++i)
+      for (int d = 0; d < dim; ++d)
+        if (!(std::abs(ns.u[d][i]) <= lim)) bad = i;
   } else {
     for (int d = 0; d < dim; ++d) {
       double* v = ns.v[d].data();

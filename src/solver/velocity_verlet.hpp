@@ -10,6 +10,8 @@
 
 namespace periadapt {
 
+struct StepArrays;
+
 struct DivergenceError {
   std::size_t node;
   long step;
@@ -100,6 +102,8 @@ class VelocityVerlet {
   double kick(std::size_t i, const std::array<double, kMaxRateRatio + 1>& f) const {
     return rate_.empty() ? 0.5 * dt_ : f[rate_[i]];
   }
+  // Raw pointers of the per-node arrays the step loops use.
+  StepArrays arrays();
   void impose_motions(double t, bool velocities_only);
   double external_power() const;
 
