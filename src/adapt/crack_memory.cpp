@@ -145,6 +145,8 @@ std::vector<std::uint32_t> rebuild_families(Model& m, const CrackMemory& mem,
   CellGrid facet_grid(D, {fx[0].data(), fx[1].data(), fx[2].data()}, mem.facets.size(),
                       std::max(reach + 0.5 * hmax_all, 1e-300));
   if (!mem.facets.empty()) fgrid = &facet_grid;
+  // Rows are independent (each writes its own bond states); the facet searches dominate.
+#pragma omp parallel for schedule(dynamic, 64)
   for (std::size_t i = 0; i < ns.size(); ++i) {
     if (!rebuild[i]) continue;  // copied rows keep their bond states
     for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {

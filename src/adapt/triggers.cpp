@@ -61,13 +61,17 @@ std::vector<std::uint32_t> apply_visibility(const Model& m, const std::vector<st
     if (refinable[j]) dmax = std::max(dmax, ns.horizon[j]);
   if (!(dmax > 0)) return {};
   for (std::uint32_t i : ids) mark[i] = refinable[i];
-  CellGrid grid(ns.dim, {ns.x[0].data(), ns.x[1].data(), ns.x[2].data()}, ns.size(),
+  // Only refinable nodes can be marked: the cell list holds those alone.
+  std::vector<std::uint32_t> candidates;
+  for (std::size_t j = 0; j < ns.size(); ++j)
+    if (refinable[j]) candidates.push_back(static_cast<std::uint32_t>(j));
+  CellGrid grid(ns.dim, {ns.x[0].data(), ns.x[1].data(), ns.x[2].data()}, candidates,
                 radius_factor * dmax);
   for (std::uint32_t i : ids) {
     const double reach = radius_factor * std::max(ns.horizon[i], dmax) * (1 + 1e-12);
     grid.for_each_within({ns.x[0][i], ns.x[1][i], ns.x[2][i]}, reach, [&](std::uint32_t j, double d2) {
       const double r = radius_factor * std::max(ns.horizon[i], ns.horizon[j]) * (1 + 1e-12);
-      if (refinable[j] && ns.level[j] <= ns.level[i] && d2 <= r * r) mark[j] = 1;
+      if (ns.level[j] <= ns.level[i] && d2 <= r * r) mark[j] = 1;
     });
   }
   std::vector<std::uint32_t> out;

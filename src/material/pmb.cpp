@@ -104,7 +104,7 @@ std::size_t forces_kernel(NodeSet& ns, BondFamilies& bf, bool allow_breaking,
   // Thermal strain eth = alpha dT: s = r/L - 1 - eth, so s/r = 1/L - (1 + eth)/r.
   const double one_eth = 1.0 + eth;
 
-#pragma omp parallel for schedule(dynamic, 512) reduction(+ : broken_total)
+#pragma omp parallel for schedule(guided, 32) reduction(+ : broken_total)
   for (std::size_t r = 0; r < n; ++r) {
     const std::size_t i = row ? row[r] : r;
     if (!(flags[i] & kActive)) continue;
@@ -174,7 +174,7 @@ void energy_kernel(const NodeSet& ns, const BondFamilies& bf, double eth, std::v
   const double* inv_len = bf.inv_length.data();
   const float* beta = bf.beta.data();
   const double one_eth = 1.0 + eth;
-#pragma omp parallel for schedule(dynamic, 512)
+#pragma omp parallel for schedule(guided, 32)
   for (std::size_t r = 0; r < n; ++r) {
     const std::size_t i = row ? row[r] : r;
     if (!(flags[i] & kActive)) {
