@@ -87,6 +87,21 @@ void accelerate(const StepArrays& s, const std::uint32_t* rows, std::size_t n, c
   }
 }
 
+// v += kick a over every node: the closing half-kick of constrained models, given after their
+// constrained components' accelerations were zeroed.
+template <int D, bool Multi>
+void kick_all(const StepArrays& s, std::size_t n, const double* kick, double half_dt) {
+  double* v[D];
+  const double* a[D];
+  for (int d = 0; d < D; ++d) v[d] = s.v[d], a[d] = s.a[d];
+  const std::uint8_t* rate = s.rate;
+#pragma omp parallel for simd schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    const double c = Multi ? kick[rate[i]] : half_dt;
+    for (int d = 0; d < D; ++d) v[d][i] += c * a[d][i];
+  }
+}
+
 // Picks the instantiation for run-time flags: f(std::integral_constant<bool, ...>...).
 template <class F>
 auto with_flags(F&& f, bool b0, bool b1) {
@@ -376,13 +391,13 @@ void VelocityVerlet::compute_accelerations(const std::vector<std::uint32_t>* row
     reaction_[q] = ns.density[i] * acc - ns.f[d][i] - (loaded ? body_[d][i] : 0.0);
     ns.a[d][i] = 0.0;
   }
-  if (closing_kick && !kick_here) {
-#pragma omp parallel for schedule(static)
-    for (std::size_t i = 0; i < ns.size(); ++i) {
-      const double c = kick(i, close_kick_);
-      for (int d = 0; d < dim; ++d) ns.v[d][i] += c * ns.a[d][i];
-    }
-  }
+  if (closing_kick && !kick_here)
+    with_dim(dim, [&](auto D) {
+      if (sa.rate)
+        kick_all<D(), true>(sa, ns.size(), close_kick_.data(), 0.5 * dt_);
+      else
+        kick_all<D(), false>(sa, ns.size(), close_kick_.data(), 0.5 * dt_);
+    });
 }
 
 double VelocityVerlet::external_power() const {
