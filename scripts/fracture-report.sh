@@ -6,8 +6,9 @@
 # thesis, adaptive 0 -> 2 against uniform level 2 (0.25 mm);
 # Kalthoff-Winkler 6.2: adaptive level 1, level 2 and the energy trigger alone at both levels; 3D branching (end
 # of 6.1): adaptive level 1. Both 2D branching studies also at the printed 22 MPa. Plate with a
-# hole 6.3: models A, B, C (h = 15, 10, 5 mm).
-# Usage: scripts/fracture-report.sh [OUT] (about 17 min on 2 cores, 5 of them the uniform 0.5 mm
+# hole 6.3: models A, B, C (h = 15, 10, 5 mm). Grid orientation (ch. 5): uniform m = 3 on grids
+# turned 0-40 deg, LPS, m = 5-7 references, AGRS (m- and delta-m-convergence) on 5-40 deg grids.
+# Usage: scripts/fracture-report.sh [OUT] (about 16 min on 2 cores, 5 of them the uniform 0.5 mm
 # m = 6 grid-orientation reference).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -104,6 +105,12 @@ run grid_m6_10 "$out/grid_m6_10.yaml"
 run grid_adaptive_10 examples/grid_orientation_adaptive.yaml
 run grid_m7_5 "$out/grid_m7_5.yaml"
 run grid_adaptive_5 "$out/grid_adaptive_5.yaml"
+# The thesis runs AGRS on the 5 and 10 deg grids only; the same m-convergence deck on the other
+# rotated grids of the study.
+for a in 20 30 40; do
+  sed "s/rotation_deg: 10.0/rotation_deg: $a/" examples/grid_orientation_adaptive.yaml > "$out/grid_adaptive_$a.yaml"
+  run "grid_adaptive_$a" "$out/grid_adaptive_$a.yaml"
+done
 # delta-m, two levels (Table 5.1 third row, Fig. 5.17) against the uniform 0.5 mm, m = 6 grid.
 sed -e '/^adapt:/,/^  check_every:/d' -e 's/spacing: 2.0e-3/spacing: 0.5e-3/' -e 's/horizon_factor: 3.0/horizon_factor: 6.0/' \
   examples/grid_orientation_adaptive_dm.yaml > "$out/grid_m6_05_10.yaml"
@@ -253,9 +260,10 @@ row() {  # name label published...
   go grid_adaptive_dm_10 10 "2 -> 0.5" "3 -> 4.5 -> 6 (delta-m)" "3.52 h, horizontal; 15,600 -> 26,778 nodes (Fig. 5.17b)"
   go grid_m7_5 5 1 7 "2.90 h, horizontal"
   go grid_adaptive_5 5 "2 -> 1" "3.5 -> 7 (m)" "2.20 h, horizontal"
+  for a in 20 30 40; do go "grid_adaptive_$a" "$a" "2 -> 1" "3 -> 6 (m)" "- (AGRS on 5 and 10 deg only)"; done
   echo
   ratio() { awk -v a="$(num "$1" "$3")" -v u="$(num "$2" "$3")" 'BEGIN { printf "%.2f", a / u }'; }
-  echo "Adaptive / uniform: 10 deg m-convergence: nodes $(ratio grid_adaptive_10 grid_m6_10 final), wall $(ratio grid_adaptive_10 grid_m6_10 wall_time_s) (thesis: nodes 19,062 / 62,502 = 0.30); 10 deg delta-m: nodes $(ratio grid_adaptive_dm_10 grid_m6_05_10 final), wall $(ratio grid_adaptive_dm_10 grid_m6_05_10 wall_time_s) (thesis 26,778 / 250,002 = 0.11 nodes, 3.52 / 16.09 h = 0.22 wall); 5 deg: nodes $(ratio grid_adaptive_5 grid_m7_5 final), wall $(ratio grid_adaptive_5 grid_m7_5 wall_time_s) (thesis 2.20 / 2.90 h = 0.76)."
+  echo "Adaptive / uniform: 10 deg m-convergence: nodes $(ratio grid_adaptive_10 grid_m6_10 final), wall $(ratio grid_adaptive_10 grid_m6_10 wall_time_s) (thesis: nodes 19,062 / 62,502 = 0.30); 10 deg delta-m: nodes $(ratio grid_adaptive_dm_10 grid_m6_05_10 final), wall $(ratio grid_adaptive_dm_10 grid_m6_05_10 wall_time_s) (thesis 26,778 / 250,002 = 0.11 nodes, 3.52 / 16.09 h = 0.22 wall); 5 deg: nodes $(ratio grid_adaptive_5 grid_m7_5 final), wall $(ratio grid_adaptive_5 grid_m7_5 wall_time_s) (thesis 2.20 / 2.90 h = 0.76); 20, 30, 40 deg m-convergence against the 10 deg uniform m = 6 grid (every rotated grid has 62,492-62,504 nodes): nodes $(ratio grid_adaptive_20 grid_m6_10 final), $(ratio grid_adaptive_30 grid_m6_10 final), $(ratio grid_adaptive_40 grid_m6_10 final)."
   echo
   echo "Weak (bond) directions, thesis 5.2 (\`periadapt study weak-directions\`; thesis for m = 3: 0, 18.435, 26.565, 30.964, 45, 59.036, 63.435, 71.565, 90):"
   echo
@@ -263,7 +271,7 @@ row() {  # name label published...
   grep '^m = ' "$out/weak_directions.txt"
   echo '```'
   echo
-  for n in grid_m3_10 grid_m3_10_quasistatic grid_lps_10 grid_m5_10 grid_m6_10 grid_adaptive_10 grid_m6_05_10 grid_adaptive_dm_10 grid_adaptive_5; do
+  for n in grid_m3_10 grid_m3_10_quasistatic grid_lps_10 grid_m5_10 grid_m6_10 grid_adaptive_10 grid_m6_05_10 grid_adaptive_dm_10 grid_adaptive_5 grid_adaptive_20 grid_adaptive_30 grid_adaptive_40; do
     echo "### $n"
     echo
     pictures "$n"
