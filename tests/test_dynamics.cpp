@@ -13,30 +13,56 @@
 
 using namespace periadapt;
 
+namespace {
+
+struct FreeBodyRun {
+  double drift = INFINITY;  // |p_end - p_0| / sum m |v| at the start
+  std::size_t broken = 0;
+  bool undo_exact = true;   // with undo on: undoing one more step gave back u, v, a exactly
+};
+
+// A body with no loads and no constraints stepped as the deck says.
+FreeBodyRun run_free_body(const std::string& yaml, bool undo) {
+  const Deck dk = test::deck_from(yaml);
+  Model m = build_model(dk);
+  const TimeStepChoice ts = choose_time_step(dk, m);
+  VelocityVerlet vv(m, ts.dt);
+  vv.set_undo(undo);
+  vv.initialize();
+  const auto p0 = linear_momentum(m.nodes);
+  double scale = 0;
+  for (std::size_t i = 0; i < m.nodes.size(); ++i)
+    for (int d = 0; d < m.nodes.dim; ++d)
+      scale += m.nodes.density[i] * m.nodes.volume[i] * std::abs(m.nodes.v[d][i]);
+  FreeBodyRun r;
+  for (long s = 0; s < ts.steps; ++s)
+    if (!vv.step()) return r;
+  const auto p1 = linear_momentum(m.nodes);
+  r.drift = std::hypot(p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]) / scale;
+  r.broken = vv.broken_bonds();
+  if (undo) {
+    const auto u = m.nodes.u, v = m.nodes.v, a = m.nodes.a;
+    if (!vv.step()) return r;
+    vv.undo_last_step();
+    r.undo_exact = m.nodes.u == u && m.nodes.v == v && m.nodes.a == a;
+  }
+  return r;
+}
+
+}  // namespace
+
 TEST(Dynamics, FreeBodyConservesLinearMomentumWithBreaking) {
   // Random-looking initial velocities large enough to break bonds; no loads, no constraints.
-  const std::string yaml =
+  const FreeBodyRun r = run_free_body(
       "model: {dimension: 2, plane: stress}\n"
       "material: {youngs_modulus: 72.0e9, density: 2440, fracture_energy: 135}\n"
       "discretization: {spacing: 0.001, horizon_factor: 3.015, body: {box: {min: [0, 0], max: [0.03, 0.02]}}}\n"
       "initial_conditions:\n"
       "  velocity: ['40*sin(977*x)*cos(311*y) + 3', '25*cos(1201*x+0.3)*sin(713*y)']\n"
-      "solver: {steps: 300}\n";
-  const Deck dk = test::deck_from(yaml);
-  Model m = build_model(dk);
-  const TimeStepChoice ts = choose_time_step(dk, m);
-  const auto p0 = linear_momentum(m.nodes);
-  double scale = 0;
-  for (std::size_t i = 0; i < m.nodes.size(); ++i)
-    scale += m.nodes.density[i] * m.nodes.volume[i] *
-             (std::abs(m.nodes.v[0][i]) + std::abs(m.nodes.v[1][i]));
-  VelocityVerlet vv(m, ts.dt);
-  vv.initialize();
-  for (long s = 0; s < ts.steps; ++s) ASSERT_TRUE(vv.step());
-  EXPECT_GT(vv.broken_bonds(), 0u) << "the test should exercise bond breaking";
-  const auto p1 = linear_momentum(m.nodes);
-  EXPECT_NEAR(p1[0], p0[0], 1e-12 * scale);
-  EXPECT_NEAR(p1[1], p0[1], 1e-12 * scale);
+      "solver: {steps: 300}\n",
+      false);
+  EXPECT_GT(r.broken, 0u) << "the test should exercise bond breaking";
+  EXPECT_LT(r.drift, 1e-12);
 }
 
 TEST(Dynamics, GaussianPulseConservesEnergyInAPlate) {
@@ -81,35 +107,19 @@ TEST(Dynamics, EnergyErrorIsSecondOrderInTheTimeStepIn3D) {
 
 TEST(Dynamics, FreeBlockConservesLinearMomentumWithBreakingIn3D) {
   // 3D, with the undo copy on (as the damage trigger runs it): bonds break, no external forces,
-  // so the momentum stays put to round-off.
-  const std::string yaml =
+  // so the momentum stays put to round-off; the undo copy the step loop keeps on the way gives
+  // back the state before a step exactly.
+  const FreeBodyRun r = run_free_body(
       "model: {dimension: 3}\n"
       "material: {youngs_modulus: 72.0e9, density: 2440, fracture_energy: 135}\n"
       "discretization: {spacing: 0.001, horizon_factor: 3.015, body: {box: {min: [0, 0, 0], max: [0.012, 0.008, 0.006]}}}\n"
       "initial_conditions:\n"
       "  velocity: ['40*sin(977*x)*cos(311*y) + 3', '25*cos(1201*x+0.3)*sin(713*z)', '30*sin(1500*z+0.2) - 2']\n"
-      "solver: {steps: 200}\n";
-  const Deck dk = test::deck_from(yaml);
-  Model m = build_model(dk);
-  const TimeStepChoice ts = choose_time_step(dk, m);
-  VelocityVerlet vv(m, ts.dt);
-  vv.set_undo(true);
-  vv.initialize();
-  const auto p0 = linear_momentum(m.nodes);
-  double scale = 0;
-  for (std::size_t i = 0; i < m.nodes.size(); ++i)
-    for (int d = 0; d < 3; ++d) scale += m.nodes.density[i] * m.nodes.volume[i] * std::abs(m.nodes.v[d][i]);
-  for (long s = 0; s < ts.steps; ++s) ASSERT_TRUE(vv.step());
-  EXPECT_GT(vv.broken_bonds(), 0u) << "the test should exercise bond breaking";
-  const auto p1 = linear_momentum(m.nodes);
-  for (int d = 0; d < 3; ++d) EXPECT_NEAR(p1[d], p0[d], 1e-12 * scale) << "component " << d;
-  // The undo copy the step loop keeps on the way gives back the state before a step exactly.
-  const auto u = m.nodes.u, v = m.nodes.v, a = m.nodes.a;
-  ASSERT_TRUE(vv.step());
-  vv.undo_last_step();
-  EXPECT_EQ(m.nodes.u, u);
-  EXPECT_EQ(m.nodes.v, v);
-  EXPECT_EQ(m.nodes.a, a);
+      "solver: {steps: 200}\n",
+      true);
+  EXPECT_GT(r.broken, 0u) << "the test should exercise bond breaking";
+  EXPECT_LT(r.drift, 1e-12);
+  EXPECT_TRUE(r.undo_exact);
 }
 
 TEST(Dynamics, OneDimensionalPulseArrivesAtTheClassicalTime) {
