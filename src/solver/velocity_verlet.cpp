@@ -271,11 +271,14 @@ void VelocityVerlet::classify_rates(const std::vector<std::uint32_t>* rows) {
 void VelocityVerlet::rebuild_rate_rows() {
   const NodeSet& ns = m_.nodes;
   for (auto& c : class_rows_) c.clear();
+  class_bonds_.fill(0.0);
   for (std::size_t i = 0; i < ns.size(); ++i) {
-    if (ns.flags[i] & kActive)
+    if (ns.flags[i] & kActive) {
       class_rows_[rate_[i]].push_back(static_cast<std::uint32_t>(i));
-    else
+      class_bonds_[rate_[i]] += static_cast<double>(m_.bonds.end(i) - m_.bonds.begin(i));
+    } else {
       rate_[i] = 1;  // a node that comes back (coarsening) starts on dt
+    }
   }
 }
 
@@ -320,7 +323,12 @@ void VelocityVerlet::prepare_rates() {
     if (s1 % k != 0 && !class_rows_[kk].empty()) full_pass_ = false;
   }
   pass_rows_.clear();
-  if (!full_pass_) gather_rows(s1, true, pass_rows_);
+  pass_bonds_ = 0.0;
+  if (!full_pass_) {
+    gather_rows(s1, true, pass_rows_);
+    for (int k = 1; k <= kMaxRateRatio; ++k)
+      if (s1 % k == 0) pass_bonds_ += class_bonds_[static_cast<std::size_t>(k)];
+  }
 }
 
 void VelocityVerlet::gather_rows(long step, bool due, std::vector<std::uint32_t>& out) const {
@@ -359,7 +367,10 @@ void VelocityVerlet::compute_accelerations(const std::vector<std::uint32_t>* row
   if (partial) {
     broken_total_ += internal_forces_rows(m_, m_.damage_enabled, *rows, log,
                                           energy_kept || keep_recent ? &energy_ : nullptr);
-    for (std::uint32_t i : *rows) bond_evals_ += static_cast<double>(m_.bonds.end(i) - m_.bonds.begin(i));
+    if (rows == &pass_rows_)
+      bond_evals_ += pass_bonds_;  // counted per rate class when the classes were formed
+    else
+      for (std::uint32_t i : *rows) bond_evals_ += static_cast<double>(m_.bonds.end(i) - m_.bonds.begin(i));
   } else {
     broken_total_ += internal_forces(m_, m_.damage_enabled, log,
                                      want_energy || keep_recent ? &energy_ : nullptr);

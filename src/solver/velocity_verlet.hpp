@@ -125,6 +125,8 @@ class VelocityVerlet {
   std::vector<std::uint8_t> target_;  // per node: the rate it qualifies for
   std::vector<std::uint32_t> pending_;  // nodes waiting to take a longer rate
   std::array<std::vector<std::uint32_t>, kMaxRateRatio + 1> class_rows_;  // active nodes by rate
+  std::array<double, kMaxRateRatio + 1> class_bonds_{};  // their bond counts
+  double pass_bonds_ = 0.0;                               // bonds of this step's pass_rows_
   std::vector<std::uint32_t> pass_rows_, idle_rows_;  // this step's force rows, and the others
   bool full_pass_ = true;                             // every active row is due this step
   struct Synced {
