@@ -102,13 +102,10 @@ void kick_all(const StepArrays& s, std::size_t n, const double* kick, double hal
   }
 }
 
-// Picks the instantiation for run-time flags: f(std::integral_constant<bool, ...>...).
+// Calls f with a compile-time std::bool_constant for the run-time flag b (nest for several).
 template <class F>
-auto with_flags(F&& f, bool b0, bool b1) {
-  using T = std::true_type;
-  using N = std::false_type;
-  if (b0) return b1 ? f(T{}, T{}) : f(T{}, N{});
-  return b1 ? f(N{}, T{}) : f(N{}, N{});
+auto with_bool(bool b, F&& f) {
+  return b ? f(std::true_type{}) : f(std::false_type{});
 }
 template <class F>
 auto with_dim(int dim, F&& f) {
@@ -385,14 +382,13 @@ void VelocityVerlet::compute_accelerations(const std::vector<std::uint32_t>* row
   const StepArrays sa = arrays();
   const std::uint32_t* row_ids = partial ? rows->data() : nullptr;
   with_dim(dim, [&](auto D) {
-    with_flags(
-        [&](auto L, auto K) {
-          if (sa.rate)
-            accelerate<D(), L(), K(), true>(sa, row_ids, n, close_kick_.data(), 0.5 * dt_);
-          else
-            accelerate<D(), L(), K(), false>(sa, row_ids, n, close_kick_.data(), 0.5 * dt_);
-        },
-        loaded, kick_here);
+    with_bool(loaded, [&](auto L) {
+      with_bool(kick_here, [&](auto K) {
+        with_bool(sa.rate != nullptr, [&](auto M) {
+          accelerate<D(), L(), K(), M()>(sa, row_ids, n, close_kick_.data(), 0.5 * dt_);
+        });
+      });
+    });
   });
   // Constrained components follow their prescribed path: record the reaction density needed.
   for (std::size_t q = 0; q < fixed_dofs_.size(); ++q) {
@@ -404,10 +400,9 @@ void VelocityVerlet::compute_accelerations(const std::vector<std::uint32_t>* row
   }
   if (closing_kick && !kick_here)
     with_dim(dim, [&](auto D) {
-      if (sa.rate)
-        kick_all<D(), true>(sa, ns.size(), close_kick_.data(), 0.5 * dt_);
-      else
-        kick_all<D(), false>(sa, ns.size(), close_kick_.data(), 0.5 * dt_);
+      with_bool(sa.rate != nullptr, [&](auto M) {
+        kick_all<D(), M()>(sa, ns.size(), close_kick_.data(), 0.5 * dt_);
+      });
     });
 }
 
@@ -535,11 +530,11 @@ bool VelocityVerlet::step() {
   if (fused) {
     const StepArrays sa = arrays();
     const std::size_t nbad = with_dim(dim, [&](auto D) {
-      return with_flags(
-          [&](auto K, auto M) {
-            return kick_drift<D(), K(), M()>(sa, n, open_kick_.data(), hdt, dt, lim);
-          },
-          undo_enabled_, sa.rate != nullptr);
+      return with_bool(undo_enabled_, [&](auto K) {
+        return with_bool(sa.rate != nullptr, [&](auto M) {
+          return kick_drift<D(), K(), M()>(sa, n, open_kick_.data(), hdt, dt, lim);
+        });
+      });
     });
     // Rare: find the first offending node for the diagnosis.
     for (std::size_t i = 0; nbad > 0 && i < n && bad == n; ++i)
