@@ -244,6 +244,51 @@ TEST(Multirate, TriggerEnergiesComeFromEachRowsOwnLatestPass) {
   EXPECT_GT(differ, 100u);  // the one-step lag is visible: the check above is not vacuous
 }
 
+TEST(Multirate, DensitiesWrittenOnlyBeforeChecksEqualThoseOfEveryPass) {
+  // With checks every 7 steps only the passes of the last max_ratio steps before each check
+  // write densities: at the checks the field is bit for bit the one that every pass writing them
+  // gives, also after rows changed (a refresh) between two checks; in between it is stale.
+  Model ma = refined_plate(), mb = refined_plate();
+  VelocityVerlet a = plate_solver(ma, 0.5, 4), b = plate_solver(mb, 0.5, 4);
+  b.keep_energies_for_checks(7);  // 7: prime to every rate, so no window is longer than needed
+  std::size_t compared = 0, stale = 0;
+  for (long s = 1; s <= 60; ++s) {
+    ASSERT_TRUE(a.step());
+    ASSERT_TRUE(b.step());
+    // Inside the window of check 28, after the rate-3 rows' pass (their latest before it): the
+    // coarse rows right of x = 30 mm get softer, as an event would make them.
+    if (s == 27)
+      for (auto* p : {&ma, &mb}) {
+        std::vector<std::uint32_t> rows;
+        for (std::uint32_t i = 0; i < p->nodes.size(); ++i)
+          if ((p->nodes.flags[i] & kActive) && p->nodes.x[0][i] > 0.03) rows.push_back(i);
+        for (std::uint32_t i : rows) p->nodes.micromodulus[i] *= 0.7;
+        (p == &ma ? a : b).synchronize_velocities();
+        (p == &ma ? a : b).refresh(&rows);
+      }
+    const std::vector<double>* wa = a.energy_density_recent();
+    const std::vector<double>* wb = b.energy_density_recent();
+    ASSERT_NE(wa, nullptr);
+    ASSERT_NE(wb, nullptr);
+    for (std::size_t i = 0; i < ma.nodes.size(); ++i) {
+      if (!(ma.nodes.flags[i] & kActive)) continue;
+      if (s % 7 == 0) {
+        EXPECT_EQ((*wa)[i], (*wb)[i]) << "step " << s << " node " << i;
+        ++compared;
+      } else if (s % 7 == 3) {
+        stale += (*wa)[i] != (*wb)[i];
+      }
+    }
+  }
+  EXPECT_GT(compared, 8u * 1000u);
+  EXPECT_GT(stale, 1000u);  // mid-way the plain sweeps left densities unwritten: not vacuous
+  for (int k = 1; k <= 4; ++k) {  // every rate took part
+    std::size_t c = 0;
+    for (std::size_t i = 0; i < ma.nodes.size(); ++i) c += (ma.nodes.flags[i] & kActive) && a.rates()[i] == k;
+    EXPECT_GT(c, 0u) << k;
+  }
+}
+
 TEST(Multirate, EachRowIsSummedOncePerItsOwnStep) {
   // Rates 1 to 4 on one grid: over a cycle of 12 steps a row of rate k is summed 12 / k times.
   Model m = refined_plate();

@@ -14,7 +14,10 @@
 namespace periadapt {
 
 Adaptor::Adaptor(Model& m, VelocityVerlet& vv, const AdaptSpec& spec)
-    : m_(m), vv_(vv), spec_(spec) {}
+    : m_(m), vv_(vv), spec_(spec) {
+  // The energy trigger is the only reader of the multi-rate densities (its check steps).
+  vv_.keep_energies_for_checks(spec_.enabled && spec_.energy_fraction ? spec_.check_every : 0);
+}
 
 std::size_t Adaptor::nodes_added() const {
   std::size_t n = 0;

@@ -357,9 +357,12 @@ void VelocityVerlet::compute_accelerations(const std::vector<std::uint32_t>* row
                        &idle_rows_);
   }
   energy_step_ = want_energy && (!partial || energy_kept) ? step_ : -1;
-  // Multi-rate: every pass also writes its rows' densities (the same sweep), so that each row
-  // holds the one of its own latest pass (energy_density_recent()).
-  const bool keep_recent = multirate_;
+  // Multi-rate: a pass also writes its rows' densities (the same sweep), so that each row holds
+  // the one of its own latest pass (energy_density_recent()) at the next check step: refreshes
+  // always, step passes (those with the closing kick) in the last max_ratio steps before it.
+  const long every = energy_check_every_;
+  const bool keep_recent =
+      multirate_ && every > 0 && (!closing_kick || (every - step_ % every) % every < max_ratio_);
   std::vector<std::uint64_t>* log = undo_enabled_ ? &saved_.broken_log : nullptr;
   if (partial) {
     broken_total_ += internal_forces_rows(m_, m_.damage_enabled, *rows, log,

@@ -75,11 +75,16 @@ class VelocityVerlet {
   const std::vector<std::uint8_t>& rates() const { return rate_; }
   // Multi-rate stepping: every row's density from its own latest force pass (a slow row's is up
   // to k - 1 steps old, as its forces are), with no extra pass over the rows idle this step.
-  // Single rate: energy_density_now().
+  // Valid at the check steps of keep_energies_for_checks(). Single rate: energy_density_now().
   const std::vector<double>* energy_density_recent() const {
-    if (multirate_ && energy_.size() == m_.nodes.size()) return &energy_;
+    if (multirate_ && energy_check_every_ > 0 && energy_.size() == m_.nodes.size()) return &energy_;
     return energy_density_now();
   }
+  // Multi-rate stepping: energy_density_recent() is read at the steps that are multiples of
+  // `every` (0: never). Every row passes once in any max_ratio consecutive steps, so only the
+  // passes of the last max_ratio steps before such a step (and refreshes) need to write their
+  // rows' densities; the others run the plain force sweep. Default 1: every pass writes them.
+  void keep_energies_for_checks(long every) { energy_check_every_ = every; }
   // The energy densities of the current state when a force pass computed them, else nullptr.
   const std::vector<double>* energy_density_now() const {
     return energy_step_ == step_ && energy_.size() == m_.nodes.size() ? &energy_ : nullptr;
@@ -121,6 +126,7 @@ class VelocityVerlet {
   bool multirate_ = false;
   double multirate_safety_ = 0.8;
   int max_ratio_ = 2;
+  long energy_check_every_ = 1;
   std::vector<std::uint8_t> rate_;    // per node: its step in units of dt (1: every step)
   std::vector<std::uint8_t> target_;  // per node: the rate it qualifies for
   std::vector<std::uint32_t> pending_;  // nodes waiting to take a longer rate
