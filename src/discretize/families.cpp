@@ -85,13 +85,22 @@ class FamilySearch {
     return c;
   }
 
-  // Writes row i, sorted by neighbour id (independent of the cell layout, friendlier to the
-  // caches), at position `at` of the bond arrays.
+  // Row i into `out`, sorted by neighbour id (independent of the cell layout, friendlier to the
+  // caches).
+  void collect(std::size_t i, std::vector<Entry>& out) const {
+    out.clear();
+    visit(i, [&](std::uint32_t j, double il, float b) { out.push_back({j, b, il}); });
+    std::sort(out.begin(), out.end(), [](const Entry& a, const Entry& b) { return a.j < b.j; });
+  }
+
+  // Writes row i at position `at` of the bond arrays.
   void write(std::size_t i, std::uint64_t at, BondFamilies& fam, std::vector<Entry>& scratch) const {
-    scratch.clear();
-    visit(i, [&](std::uint32_t j, double il, float b) { scratch.push_back({j, b, il}); });
-    std::sort(scratch.begin(), scratch.end(), [](const Entry& a, const Entry& b) { return a.j < b.j; });
-    for (const Entry& e : scratch) {
+    collect(i, scratch);
+    store(scratch, at, fam);
+  }
+
+  static void store(const std::vector<Entry>& row, std::uint64_t at, BondFamilies& fam) {
+    for (const Entry& e : row) {
       fam.neighbor[at] = e.j;
       fam.inv_length[at] = e.inv_len;
       fam.beta[at] = e.beta;
@@ -183,29 +192,28 @@ void rebuild_rows(BondFamilies& fam, const NodeSet& nodes, const QuadratureSpec&
     if (i < rows.size() && rows[i]) list.push_back(static_cast<std::uint32_t>(i));
   if (list.empty()) return;
   const FamilySearch search(nodes, quad, list);
-  std::vector<std::uint64_t> count(list.size(), 0);
+  // One search per row, into a buffer per row: a window's rows are few, so unlike the full
+  // build (which counts first and allocates nothing but the final arrays) the search runs once.
+  std::vector<std::vector<Entry>> found(list.size());
 #pragma omp parallel for schedule(dynamic, 64)
   for (std::size_t r = 0; r < list.size(); ++r)
-    if (nodes.flags[list[r]] & kActive) count[r] = search.count(list[r]);
+    if (nodes.flags[list[r]] & kActive) search.collect(list[r], found[r]);
   // Rebuilt rows go after everything else, in node order; their old entries become slack.
   std::uint64_t at = tail;
   for (std::size_t r = 0; r < list.size(); ++r) {
     const std::size_t i = list[r];
+    const std::uint64_t count = found[r].size();
     fam.live -= fam.ends[i] - fam.offsets[i];
     fam.offsets[i] = at;
-    fam.ends[i] = at + count[r];
-    fam.live += count[r];
-    at += count[r];
+    fam.ends[i] = at + count;
+    fam.live += count;
+    at += count;
   }
   grow_bond_arrays(fam, at);
   fam.offsets[n] = at;
-#pragma omp parallel
-  {
-    std::vector<Entry> scratch;
-#pragma omp for schedule(dynamic, 64)
-    for (std::size_t r = 0; r < list.size(); ++r)
-      if (count[r] > 0) search.write(list[r], fam.offsets[list[r]], fam, scratch);
-  }
+#pragma omp parallel for schedule(dynamic, 64)
+  for (std::size_t r = 0; r < list.size(); ++r)
+    FamilySearch::store(found[r], fam.offsets[list[r]], fam);
   // Slack above a quarter of the live bonds: one compacting copy, rows back in node order.
   if (fam.neighbor.size() - fam.live > fam.live / 4) {
     BondFamilies c;
