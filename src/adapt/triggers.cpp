@@ -61,10 +61,23 @@ std::vector<std::uint32_t> apply_visibility(const Model& m, const std::vector<st
     if (refinable[j]) dmax = std::max(dmax, ns.horizon[j]);
   if (!(dmax > 0)) return {};
   for (std::uint32_t i : ids) mark[i] = refinable[i];
-  // Only refinable nodes can be marked: the cell list holds those alone.
+  // Only refinable nodes within reach of an identified one can be marked: the cell list holds
+  // those alone (the box around the identified nodes, widened by the largest reach).
+  double hmax = dmax;
+  for (std::uint32_t i : ids) hmax = std::max(hmax, ns.horizon[i]);
+  const double margin = radius_factor * hmax * (1 + 1e-9);
+  double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+  for (int d = 0; d < ns.dim; ++d) {
+    lo[d] = INFINITY, hi[d] = -INFINITY;
+    for (std::uint32_t i : ids) lo[d] = std::min(lo[d], ns.x[d][i]), hi[d] = std::max(hi[d], ns.x[d][i]);
+    lo[d] -= margin, hi[d] += margin;
+  }
   std::vector<std::uint32_t> candidates;
-  for (std::size_t j = 0; j < ns.size(); ++j)
-    if (refinable[j]) candidates.push_back(static_cast<std::uint32_t>(j));
+  for (std::size_t j = 0; j < ns.size(); ++j) {
+    bool in = refinable[j];
+    for (int d = 0; d < ns.dim && in; ++d) in = ns.x[d][j] >= lo[d] && ns.x[d][j] <= hi[d];
+    if (in) candidates.push_back(static_cast<std::uint32_t>(j));
+  }
   CellGrid grid(ns.dim, {ns.x[0].data(), ns.x[1].data(), ns.x[2].data()}, candidates,
                 radius_factor * dmax);
   for (std::uint32_t i : ids) {
