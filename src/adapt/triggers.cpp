@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/cell_grid.hpp"
+#include "discretize/families.hpp"
 
 namespace periadapt {
 
@@ -65,19 +66,8 @@ std::vector<std::uint32_t> apply_visibility(const Model& m, const std::vector<st
   // those alone (the box around the identified nodes, widened by the largest reach).
   double hmax = dmax;
   for (std::uint32_t i : ids) hmax = std::max(hmax, ns.horizon[i]);
-  const double margin = radius_factor * hmax * (1 + 1e-9);
-  double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
-  for (int d = 0; d < ns.dim; ++d) {
-    lo[d] = INFINITY, hi[d] = -INFINITY;
-    for (std::uint32_t i : ids) lo[d] = std::min(lo[d], ns.x[d][i]), hi[d] = std::max(hi[d], ns.x[d][i]);
-    lo[d] -= margin, hi[d] += margin;
-  }
-  std::vector<std::uint32_t> candidates;
-  for (std::size_t j = 0; j < ns.size(); ++j) {
-    bool in = refinable[j];
-    for (int d = 0; d < ns.dim && in; ++d) in = ns.x[d][j] >= lo[d] && ns.x[d][j] <= hi[d];
-    if (in) candidates.push_back(static_cast<std::uint32_t>(j));
-  }
+  std::vector<std::uint32_t> candidates = active_nodes_near(ns, ids, radius_factor * hmax * (1 + 1e-9));
+  std::erase_if(candidates, [&](std::uint32_t j) { return !refinable[j]; });
   CellGrid grid(ns.dim, {ns.x[0].data(), ns.x[1].data(), ns.x[2].data()}, candidates,
                 radius_factor * dmax);
   for (std::uint32_t i : ids) {
