@@ -144,8 +144,9 @@ int run_bobaru_1d_wave_study(const std::string& out_dir) {
   // values as reconstructed in the spec (Table V is garbled). The arrival error of these grids is
   // set by m = delta/dx (uniform dx = 0.5 with delta = 1.5 arrives like dx = 1 with delta = 3):
   // delta-scaling keeps m = 3 in the refined zone and cannot gain much; m-scaling (delta kept, m
-  // doubled) and delta-m scaling (m + 1, delta * (m + 1) / 2m) are shown beside it. "uniform same N": the Table IV error at the adaptive run's mean
-  // node count (log-log interpolation between our uniform rows).
+  // doubled) and delta-m scaling (m + 1, delta * (m + 1) / 2m) are shown beside it. "uniform
+  // same N": the Table IV error at the adaptive run's mean node count (log-log interpolation
+  // between our uniform rows).
   auto uniform_at = [&](double N, const std::vector<double>& err) {
     std::size_t k = 1;
     while (k + 1 < n.size() && n[k] < N) ++k;

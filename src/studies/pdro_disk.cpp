@@ -116,8 +116,9 @@ int run_pdro_disk_study(const std::string& out_arg, const PdroDiskOptions& o) {
     runs.push_back(run_variant(o, fmt::format("overlay n = {:.1f}", n), dx, n, cell, out_dir));
   const DiskRun& ref = runs[0];
   const DiskRun& plain = runs[1];
-  fmt::print("{:<18} {:>7} | {:>8} {:>8} | {:>9} {:>10} {:>7} | {:>8} | {:>7} {:>7} {:>8} | {:>5} {:>5} {:>7}\n", "run",
-             "nodes", "t_i us", "t_b us", "sum phi", "phi*dx mm", "/ref", "pattern", "wall s",
+  fmt::print("{:<18} {:>7} | {:>8} {:>8} | {:>9} {:>10} {:>7} | {:>8} | {:>7} {:>7} {:>8} | {:>5} "
+             "{:>5} {:>7}\n",
+             "run", "nodes", "t_i us", "t_b us", "sum phi", "phi*dx mm", "/ref", "pattern", "wall s",
              "/plain", "checks", "cells", "extra", "missing");
   std::vector<PlotSeries> series;
   for (const DiskRun& r : runs) {
@@ -135,7 +136,8 @@ int run_pdro_disk_study(const std::string& out_arg, const PdroDiskOptions& o) {
       return miss;
     };
     const std::size_t total = r.cracked.size() + ref.cracked.size();
-    const std::size_t extra = unmatched(r.cracked, ref.cracked), missing = unmatched(ref.cracked, r.cracked);
+    const std::size_t extra = unmatched(r.cracked, ref.cracked);
+    const std::size_t missing = unmatched(ref.cracked, r.cracked);
     const double mismatch =
         total == 0 ? NAN : static_cast<double>(extra + missing) / static_cast<double>(total);
     fmt::print("{:<18} {:>7} | {:>8.2f} {:>8.2f} | {:>9.1f} {:>10.1f} {:>7.3f} | {:>7.1f}% | {:>7.1f} "
