@@ -209,6 +209,24 @@ TEST(Dynamics, BobaruWaveArrivalTimesMatchTableIV) {
   }
 }
 
+TEST(Dynamics, RaisingMWhereThePulseIsRefinedBeatsTheM3DispersionFloor) {
+  // Bobaru 6.2.2 on 451 nodes (dx = 1, delta = 3, m = 3) with level-1 AGRS following the pulse.
+  // The midpoint sum of the triangular micromodulus at m = 3 carries 8/9 of the continuum
+  // stiffness, so long waves on any m = 3 grid run at sqrt(8/9) of c and arrive at x = 400 no
+  // earlier than 400 / sqrt(8/9) = 424.26 (dispersion only delays them more). Delta-scaling keeps
+  // m = 3 on the refined level and must stay behind that floor; m-scaling (m = 6) and delta-m
+  // (m = 4) raise m inside the refined zone and must beat it.
+  const double floor_m3 = 400.0 / std::sqrt(8.0 / 9.0);
+  const WaveArrival d = bobaru_wave_arrival(451, 3.0, true, "delta");
+  const WaveArrival m = bobaru_wave_arrival(451, 3.0, true, "m");
+  const WaveArrival dm = bobaru_wave_arrival(451, 3.0, true, "delta_m");
+  EXPECT_GT(d.time, floor_m3 * (1 - 1e-3));
+  EXPECT_LT(m.time, floor_m3 - 10.0);
+  EXPECT_LT(dm.time, floor_m3 - 5.0);
+  // The refined zone follows the pulse and is coarsened behind it: the node count moves.
+  for (const WaveArrival* a : {&d, &m, &dm}) EXPECT_GT(a->max_nodes, a->min_nodes);
+}
+
 TEST(Dynamics, AdaptiveStepCheckCountsAnInitialRefinementOnce) {
   // A plate (bound about 213 ns on its 1 mm grid) refined to level 2 at its centre before the run,
   // with max_level 2 (delta-scaling: the level-2 bound about 53 ns). 40 ns is stable on the
