@@ -40,7 +40,8 @@ WaveArrival bobaru_wave_arrival(int nodes, double delta, bool adaptive, const st
                       : std::string()) +
                  // Zones whose horizon differs from the coarse grid's differ in dispersion and
                  // pump energy as they move (+103% by t = 400 on 2,701 nodes with delta-scaling;
-                 // 10% with delta-m); m-scaling ones do not (+1.3%) and are left alone.
+                 // delta-m: amplitude at x = 400 +9.9%); m-scaling ones do not (+1.3%) and are
+                 // left alone.
                  (scaling != "m" ? ", conserve_energy: true}\n" : "}\n")
                : std::string());
   const Deck dk = parse_deck(yaml, "bobaru-1d-wave (built-in)");
