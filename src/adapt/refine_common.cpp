@@ -6,6 +6,7 @@
 #include "analysis/energy.hpp"
 #include "core/cell_grid.hpp"
 #include "core/visible_gradient.hpp"
+#include "discretize/families.hpp"
 
 namespace periadapt {
 
@@ -134,9 +135,24 @@ void finish_refinement(Model& m, const AdaptSpec& spec, const CrackMemory& memor
     double hmax = 0;
     for (std::size_t i = 0; i < ns.size(); ++i)
       if (ns.flags[i] & kActive) hmax = std::max(hmax, ns.spacing[i]);
-    CellGrid grid(D, {ns.x[0].data(), ns.x[1].data(), ns.x[2].data()}, ns.size(), 2 * hmax);
-    for (std::size_t i = 0; i < ns.size(); ++i) {
-      if (!(ns.flags[i] & kActive) || ns.level[i] == 0) continue;
+    // A node's nearest coarser node lies within 2 hmax, so only nodes that near this event's
+    // new, deactivated or resized nodes can change. Coarsening changes nodes without passing
+    // here, so with it every node is looked at again.
+    std::vector<std::uint32_t> rows, near;
+    if (spec.coarsen) {
+      for (std::size_t i = 0; i < ns.size(); ++i)
+        if (ns.flags[i] & kActive) rows.push_back(static_cast<std::uint32_t>(i));
+      near = rows;
+    } else {
+      std::vector<std::uint32_t> seeds;
+      for (std::size_t i = 0; i < ns.size(); ++i)
+        if (i >= n0 || (i < changed.size() && changed[i])) seeds.push_back(static_cast<std::uint32_t>(i));
+      rows = active_nodes_near(ns, seeds, 2 * hmax * (1 + 1e-9));
+      near = active_nodes_near(ns, seeds, 4 * hmax * (1 + 1e-9));
+    }
+    const CellGrid grid(D, {ns.x[0].data(), ns.x[1].data(), ns.x[2].data()}, near, 2 * hmax);
+    for (std::uint32_t i : rows) {
+      if (ns.level[i] == 0) continue;
       const double base = level_horizon(m, spec, ns.level[i]);
       const double mi = base / ns.spacing[i];
       double dmin = INFINITY;
