@@ -664,3 +664,55 @@ TEST(Adapt, InterfaceHorizonLowersTheLocalEnergyLossOfAWaveCrossingAPatch) {
   EXPECT_LT(c.reflection, b.reflection);
   for (const WavePatchRow& r : rows) EXPECT_LT(r.energy_change, 0.5) << r.name;
 }
+
+TEST(Adapt, InterfaceHorizonsAfterSuccessiveEventsEqualABruteForceRecompute) {
+  // Each event updates the interface horizons only near its own changes. After four events in
+  // different places (two of them to level 2 inside level 1, one next to an earlier zone), every
+  // refined node must still have the horizon the rule gives when applied to the whole grid:
+  // m times the distance to its nearest coarser node within two of its spacings, never less
+  // than its level's horizon.
+  Model m = build_model(test::deck_from(kPlate));
+  AdaptSpec spec;
+  spec.enabled = true;
+  spec.max_level = 2;
+  spec.interface_horizon = true;
+  auto refine_near = [&](double x, double y, double r, int level) {
+    std::vector<std::uint32_t> parents;
+    const NodeSet& ns = m.nodes;
+    for (std::uint32_t i = 0; i < ns.size(); ++i)
+      if ((ns.flags[i] & kActive) && ns.level[i] == level - 1 && std::abs(ns.x[0][i] - x) < r &&
+          std::abs(ns.x[1][i] - y) < r)
+        parents.push_back(i);
+    ASSERT_FALSE(parents.empty());
+    refine_nodes(m, parents, spec);
+  };
+  refine_near(0.008, 0.008, 0.003, 1);
+  refine_near(0.008, 0.008, 0.001, 2);
+  refine_near(0.0135, 0.008, 0.0025, 1);  // next to the first zone: its interface moves
+  refine_near(0.022, 0.010, 0.002, 1);
+  refine_near(0.022, 0.010, 0.0008, 2);
+  const NodeSet& ns = m.nodes;
+  std::size_t enlarged = 0, refined = 0;
+  for (std::size_t i = 0; i < ns.size(); ++i) {
+    if (!(ns.flags[i] & kActive) || ns.level[i] == 0) continue;
+    ++refined;
+    const double base = level_horizon(m, spec, ns.level[i]);
+    double dmin = INFINITY;
+    for (std::size_t j = 0; j < ns.size(); ++j) {
+      if (!(ns.flags[j] & kActive) || !(ns.spacing[j] > 1.5 * ns.spacing[i])) continue;
+      double d2 = 0;
+      for (int d = 0; d < ns.dim; ++d) {
+        const double t = ns.x[d][j] - ns.x[d][i];
+        d2 += t * t;
+      }
+      const double reach = 2.0 * ns.spacing[i];
+      if (d2 <= reach * reach) dmin = std::min(dmin, std::sqrt(d2));
+    }
+    const double want = std::isfinite(dmin) ? std::max(base, base / ns.spacing[i] * dmin) : base;
+    EXPECT_EQ(ns.horizon[i], want) << "node " << i << " level " << int(ns.level[i]);
+    enlarged += want > base;
+  }
+  // Not vacuous: many interface nodes carry an enlarged horizon, and interior ones do not.
+  EXPECT_GT(enlarged, 20u);
+  EXPECT_LT(enlarged, refined);
+}
