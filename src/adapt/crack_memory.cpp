@@ -127,7 +127,7 @@ std::vector<std::uint32_t> rebuild_families(Model& m, const CrackMemory& mem,
   apply_surface_correction(ns, bf, m.material.shape,
                            p_wave_modulus(D, m.material.plane, m.material.E, m.material.nu),
                            m.surface_correction);
-  apply_precracks(ns, bf, m.cracks);
+  apply_precracks(ns, bf, m.cracks, &rebuild);
   CellGrid* fgrid = nullptr;
   std::vector<double> fx[3];
   double reach = 0;

@@ -49,12 +49,14 @@ class FamilySearch {
                                           {nodes.x[0].data(), nodes.x[1].data(), nodes.x[2].data()},
                                           nodes.size(), search_radius(nodes, quad)) {}
   // Only the rows `rows` will be searched: the cell list holds the active nodes that can be in
-  // their families (within their largest search radius of their bounding box).
+  // their families (within their largest search radius of their bounding box). Its cells follow
+  // the smallest radius: after refinement most rows are fine ones, and cells sized for the coarse
+  // radius made each of them test ~4x more candidates than it has neighbours.
   FamilySearch(const NodeSet& nodes, const QuadratureSpec& quad,
                const std::vector<std::uint32_t>& rows)
       : nodes_(nodes), quad_(quad), grid_(nodes.dim,
                                           {nodes.x[0].data(), nodes.x[1].data(), nodes.x[2].data()},
-                                          candidates(nodes, quad, rows), search_radius(nodes, quad, rows)) {}
+                                          candidates(nodes, quad, rows), cell_size(nodes, quad, rows)) {}
 
   // Calls visit(j, 1/xi, beta) for every family member of node i, in a fixed order.
   template <class Visit>
@@ -123,6 +125,15 @@ class FamilySearch {
     for (std::uint32_t i : rows)
       r = std::max(r, quadrature_search_radius(quad.rule, nodes.dim, nodes.horizon[i], nodes.spacing[i]));
     return std::max(r * (1 + 1e-9), 1e-300);
+  }
+  // The smallest search radius of the rows, but at least a quarter of the largest (a query then
+  // spans at most 9 cells per axis).
+  static double cell_size(const NodeSet& nodes, const QuadratureSpec& quad,
+                          const std::vector<std::uint32_t>& rows) {
+    double r = INFINITY;
+    for (std::uint32_t i : rows)
+      r = std::min(r, quadrature_search_radius(quad.rule, nodes.dim, nodes.horizon[i], nodes.spacing[i]));
+    return std::max(r, 0.25 * search_radius(nodes, quad, rows));
   }
   static std::vector<std::uint32_t> candidates(const NodeSet& nodes, const QuadratureSpec& quad,
                                                const std::vector<std::uint32_t>& rows) {

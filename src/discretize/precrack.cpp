@@ -6,7 +6,7 @@
 namespace periadapt {
 
 std::size_t apply_precracks(const NodeSet& nodes, BondFamilies& bonds,
-                            const std::vector<PreCrack>& cracks) {
+                            const std::vector<PreCrack>& cracks, const std::vector<char>* rows) {
   std::size_t cut = 0;
   const std::size_t n = nodes.size();
   for (const PreCrack& c : cracks) {
@@ -22,6 +22,7 @@ std::size_t apply_precracks(const NodeSet& nodes, BondFamilies& bonds,
     }
 #pragma omp parallel for schedule(static) reduction(+ : cut)
     for (std::size_t i = 0; i < n; ++i) {
+      if (rows && !(i < rows->size() && (*rows)[i])) continue;
       const Vec3 p{nodes.x[0][i], nodes.x[1][i], nodes.x[2][i]};
       const double h = nodes.horizon[i];
       bool near = true;

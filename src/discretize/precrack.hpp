@@ -15,8 +15,11 @@ struct PreCrack {
   std::array<Vec3, 4> points;  // segment uses points[0], points[1]
 };
 
-// Breaks the crossing bonds; returns the number of directed bond entries broken.
+// Breaks the crossing bonds; returns the number of directed bond entries broken. `rows`
+// (optional): only the rows of flagged nodes (a refinement event's rebuilt rows; the others keep
+// their cut bonds).
 std::size_t apply_precracks(const NodeSet& nodes, BondFamilies& bonds,
-                            const std::vector<PreCrack>& cracks);
+                            const std::vector<PreCrack>& cracks,
+                            const std::vector<char>* rows = nullptr);
 
 }  // namespace periadapt
