@@ -150,8 +150,17 @@ void finish_refinement(Model& m, const AdaptSpec& spec, const CrackMemory& memor
       rows = active_nodes_near(ns, seeds, 2 * hmax * (1 + 1e-9));
       near = active_nodes_near(ns, seeds, 4 * hmax * (1 + 1e-9));
     }
-    const CellGrid grid(D, {ns.x[0].data(), ns.x[1].data(), ns.x[2].data()}, near, 2 * hmax);
-    for (std::uint32_t i : rows) {
+    // Cells of the finest spacing among the rows: a query (2 spacings around a fine node) then
+    // tests ~25 candidates, not the ~60 of cells sized 2 hmax.
+    double smin = hmax;
+    for (std::uint32_t i : rows)
+      if (ns.level[i] > 0) smin = std::min(smin, ns.spacing[i]);
+    const CellGrid grid(D, {ns.x[0].data(), ns.x[1].data(), ns.x[2].data()}, near,
+                        std::max(smin, 0.25 * hmax));
+    // Rows are independent: each writes only its own horizon and material constants.
+#pragma omp parallel for schedule(dynamic, 64)
+    for (std::size_t r = 0; r < rows.size(); ++r) {
+      const std::uint32_t i = rows[r];
       if (ns.level[i] == 0) continue;
       const double base = level_horizon(m, spec, ns.level[i]);
       const double mi = base / ns.spacing[i];
