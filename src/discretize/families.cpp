@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "core/cell_grid.hpp"
 
@@ -209,31 +210,31 @@ void rebuild_rows(BondFamilies& fam, const NodeSet& nodes, const QuadratureSpec&
 #pragma omp parallel for schedule(dynamic, 64)
   for (std::size_t r = 0; r < list.size(); ++r)
     if (nodes.flags[list[r]] & kActive) search.collect(list[r], found[r]);
-  // Rebuilt rows go after everything else, in node order; their old entries become slack.
-  std::uint64_t at = tail;
+  std::uint64_t appended = 0, dropped = 0;
   for (std::size_t r = 0; r < list.size(); ++r) {
-    const std::size_t i = list[r];
-    const std::uint64_t count = found[r].size();
-    fam.live -= fam.ends[i] - fam.offsets[i];
-    fam.offsets[i] = at;
-    fam.ends[i] = at + count;
-    fam.live += count;
-    at += count;
+    appended += found[r].size();
+    dropped += fam.ends[list[r]] - fam.offsets[list[r]];
   }
-  grow_bond_arrays(fam, at);
-  fam.offsets[n] = at;
-#pragma omp parallel for schedule(dynamic, 64)
-  for (std::size_t r = 0; r < list.size(); ++r)
-    FamilySearch::store(found[r], fam.offsets[list[r]], fam);
-  // Slack above a quarter of the live bonds: one compacting copy, rows back in node order.
-  if (fam.neighbor.size() - fam.live > fam.live / 4) {
+  const std::uint64_t live = fam.live - dropped + appended, total = tail + appended;
+  // Compact when appending would reallocate (a reallocation copies every bond, slack included,
+  // and a compaction would follow soon) or would leave slack above a quarter of the live bonds:
+  // one copy, rows back in node order, the rebuilt ones taken from the search.
+  if (total > fam.neighbor.capacity() || total - live > live / 4) {
     BondFamilies c;
     c.offsets.assign(n + 1, 0);
-    for (std::size_t i = 0; i < n; ++i) c.offsets[i + 1] = c.offsets[i] + (fam.ends[i] - fam.offsets[i]);
-    // With the growth headroom: the next event appends without copying every bond.
+    std::vector<std::uint32_t> slot(n, UINT32_MAX);  // row -> index into `found`
+    for (std::size_t r = 0; r < list.size(); ++r) slot[list[r]] = static_cast<std::uint32_t>(r);
+    for (std::size_t i = 0; i < n; ++i)
+      c.offsets[i + 1] = c.offsets[i] + (slot[i] != UINT32_MAX ? found[slot[i]].size()
+                                                                : fam.ends[i] - fam.offsets[i]);
+    // With the growth headroom, so that the next events append without copying.
     grow_bond_arrays(c, c.offsets[n]);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, 256)
     for (std::size_t i = 0; i < n; ++i) {
+      if (slot[i] != UINT32_MAX) {
+        FamilySearch::store(found[slot[i]], c.offsets[i], c);
+        continue;
+      }
       const auto b = static_cast<long>(fam.offsets[i]), e = static_cast<long>(fam.ends[i]);
       const auto o = static_cast<long>(c.offsets[i]);
       std::copy(fam.neighbor.begin() + b, fam.neighbor.begin() + e, c.neighbor.begin() + o);
@@ -242,7 +243,22 @@ void rebuild_rows(BondFamilies& fam, const NodeSet& nodes, const QuadratureSpec&
     }
     c.close_contiguous();
     fam = std::move(c);
+    return;
   }
+  // Rebuilt rows go after everything else, in node order; their old entries become slack.
+  std::uint64_t at = tail;
+  for (std::size_t r = 0; r < list.size(); ++r) {
+    const std::size_t i = list[r];
+    fam.offsets[i] = at;
+    fam.ends[i] = at + found[r].size();
+    at += found[r].size();
+  }
+  fam.live = live;
+  grow_bond_arrays(fam, at);
+  fam.offsets[n] = at;
+#pragma omp parallel for schedule(dynamic, 64)
+  for (std::size_t r = 0; r < list.size(); ++r)
+    FamilySearch::store(found[r], fam.offsets[list[r]], fam);
 }
 
 void build_transpose(BondFamilies& bf) {
