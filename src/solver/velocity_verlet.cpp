@@ -505,21 +505,15 @@ bool VelocityVerlet::step() {
   const std::size_t n = ns.size();
   const int dim = ns.dim;
   const double dt = dt_, hdt = 0.5 * dt_;
-  // Without motions, kicks and drift go in one pass over the nodes (one thread fork per step,
-  // not 2 dim), which also keeps the state an undo needs on the way.
-  const bool fused = m_.motions.empty();
+  // Kicks and drift go in one pass over the nodes (one thread fork per step, not 2 dim), which
+  // also keeps the state an undo needs on the way; components with a prescribed velocity are
+  // put on it afterwards.
   if (undo_enabled_) {
     // Components beyond the model's dimension stay zero: nothing to keep.
     for (int d = 0; d < dim; ++d) {
-      if (fused) {
-        saved_.u[d].resize(n);
-        saved_.v[d].resize(n);
-        saved_.a[d].resize(n);
-      } else {
-        saved_.u[d] = ns.u[d];
-        saved_.v[d] = ns.v[d];
-        saved_.a[d] = ns.a[d];
-      }
+      saved_.u[d].resize(n);
+      saved_.v[d].resize(n);
+      saved_.a[d].resize(n);
     }
     saved_.broken_weight = ns.broken_weight;
     saved_.v_prev_fixed = v_prev_fixed_;
@@ -540,42 +534,39 @@ bool VelocityVerlet::step() {
   // Half-step velocity, then positions; motions with prescribed velocity use v(t + dt/2).
   const double lim = runaway_limit_;
   std::size_t bad = n;
-  if (fused) {
-    const StepArrays sa = arrays();
-    const std::size_t nbad = with_dim(dim, [&](auto D) {
-      return with_bool(undo_enabled_, [&](auto K) {
-        return with_bool(sa.rate != nullptr, [&](auto M) {
-          return kick_drift<D(), K(), M()>(sa, n, open_kick_.data(), hdt, dt, lim);
-        });
+  // Displacements before the drift of the components driven by a prescribed velocity.
+  driven_u_.clear();
+  for (const PrescribedMotion& pm : m_.motions)
+    if (pm.kind == PrescribedMotion::Kind::Velocity)
+      for (std::uint32_t i : pm.nodes)
+        for (int d = 0; d < dim; ++d)
+          if (pm.component[d]) driven_u_.push_back(ns.u[d][i]);
+  const StepArrays sa = arrays();
+  std::size_t nbad = with_dim(dim, [&](auto D) {
+    return with_bool(undo_enabled_, [&](auto K) {
+      return with_bool(sa.rate != nullptr, [&](auto M) {
+        return kick_drift<D(), K(), M()>(sa, n, open_kick_.data(), hdt, dt, lim);
       });
     });
-    // Rare: find the first offending node for the diagnosis.
-    for (std::size_t i = 0; nbad > 0 && i < n && bad == n; ++i)
-      for (int d = 0; d < dim; ++d)
-        if (!(std::abs(ns.u[d][i]) <= lim)) bad = i;
-  } else {
-    for (int d = 0; d < dim; ++d) {
-      double* v = ns.v[d].data();
-      const double* a = ns.a[d].data();
-#pragma omp parallel for schedule(static)
-      for (std::size_t i = 0; i < n; ++i) v[i] += kick(i, open_kick_) * a[i];
-    }
+  });
+  if (!driven_u_.empty()) {
+    // Their half-step velocity is the prescribed one, v(t + dt/2), and their drift follows it.
     impose_motions(time_ + hdt, true);
-    for (int d = 0; d < dim; ++d) {
-      double* u = ns.u[d].data();
-      double* y = ns.cur.data();
-      const double* x = ns.x[d].data();
-      const double* v = ns.v[d].data();
-      std::size_t first_bad = n;
-#pragma omp parallel for schedule(static) reduction(min : first_bad)
-      for (std::size_t i = 0; i < n; ++i) {
-        u[i] += dt * v[i];
-        y[4 * i + d] = x[i] + u[i];
-        if (!(std::abs(u[i]) <= lim)) first_bad = std::min(first_bad, i);
-      }
-      bad = std::min(bad, first_bad);
-    }
+    std::size_t q = 0;
+    for (const PrescribedMotion& pm : m_.motions)
+      if (pm.kind == PrescribedMotion::Kind::Velocity)
+        for (std::uint32_t i : pm.nodes)
+          for (int d = 0; d < dim; ++d)
+            if (pm.component[d]) {
+              ns.u[d][i] = driven_u_[q++] + dt * ns.v[d][i];
+              ns.cur[4 * static_cast<std::size_t>(i) + d] = ns.x[d][i] + ns.u[d][i];
+              nbad += !(std::abs(ns.u[d][i]) <= lim);
+            }
   }
+  // Rare: find the first offending node for the diagnosis.
+  for (std::size_t i = 0; nbad > 0 && i < n && bad == n; ++i)
+    for (int d = 0; d < dim; ++d)
+      if (!(std::abs(ns.u[d][i]) <= lim)) bad = i;
   time_ += dt;
   ++step_;
   impose_motions(time_, false);

@@ -103,10 +103,6 @@ class VelocityVerlet {
   void rebuild_rate_rows();
   // The active rows whose cycle closes at `step` (due) or does not (idle).
   void gather_rows(long step, bool due, std::vector<std::uint32_t>& out) const;
-  // Kick factor of node i from a table of this step's opening or closing kicks per rate.
-  double kick(std::size_t i, const std::array<double, kMaxRateRatio + 1>& f) const {
-    return rate_.empty() ? 0.5 * dt_ : f[rate_[i]];
-  }
   // Raw pointers of the per-node arrays the step loops use.
   StepArrays arrays();
   void impose_motions(double t, bool velocities_only);
@@ -156,6 +152,7 @@ class VelocityVerlet {
   // Constrained degrees of freedom, flattened (node*3 + component), with reaction densities.
   std::vector<std::size_t> fixed_dofs_;
   std::vector<double> reaction_;
+  std::vector<double> driven_u_;  // step scratch: displacements of velocity-driven components
   // Body-force densities of the loaded nodes' components (node*3 + d), from the loads at the
   // current time; empty without loads, so load-free models do not carry 24 B/node for them.
   std::array<std::vector<double>, 3> body_;
