@@ -75,7 +75,8 @@ CrackMemory remember_cracks(const Model& m, const std::vector<char>& vanishing,
 }
 
 std::vector<std::uint32_t> rebuild_families(Model& m, const CrackMemory& mem,
-                                            std::size_t n_before, const std::vector<char>& changed) {
+                                            std::size_t n_before, const std::vector<char>& changed,
+                                            bool appended_only) {
   NodeSet& ns = m.nodes;
   BondFamilies& bf = m.bonds;
   const int D = ns.dim;
@@ -121,8 +122,15 @@ std::vector<std::uint32_t> rebuild_families(Model& m, const CrackMemory& mem,
   std::sort(broken_pairs.begin(), broken_pairs.end());
   if (global)
     bf = build_families(ns, m.quadrature);
-  else
+  else if (appended_only) {
+    // Unchanged old nodes keep their old neighbours (those still active) and bond states.
+    std::vector<char> patch(ns.size(), 0);
+    for (std::size_t i = 0; i < n_before; ++i)
+      patch[i] = rebuild[i] && !(i < changed.size() && changed[i]);
+    rebuild_rows(bf, ns, m.quadrature, rebuild, &patch);
+  } else {
     rebuild_rows(bf, ns, m.quadrature, rebuild);
+  }
   if (global) std::fill(rebuild.begin(), rebuild.end(), 1);
   apply_surface_correction(ns, bf, m.material.shape,
                            p_wave_modulus(D, m.material.plane, m.material.E, m.material.nu),

@@ -46,8 +46,11 @@ CrackMemory remember_cracks(const Model& m, const std::vector<char>& vanishing,
 // nodes that appeared, vanished or changed horizon: only the families within reach of them are
 // searched again (a local window), the others are copied (not with surface correction, whose
 // factors are not local: then everything is rebuilt).
+// `appended_only`: the event only switched nodes off and appended new ones (method B), so the
+// rows of unchanged nodes in the window are patched rather than searched (same rows).
 // Returns the nodes whose rows were searched again.
 std::vector<std::uint32_t> rebuild_families(Model& m, const CrackMemory& memory,
-                                            std::size_t n_before, const std::vector<char>& changed);
+                                            std::size_t n_before, const std::vector<char>& changed,
+                                            bool appended_only = false);
 
 }  // namespace periadapt

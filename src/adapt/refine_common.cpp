@@ -182,7 +182,9 @@ void finish_refinement(Model& m, const AdaptSpec& spec, const CrackMemory& memor
   for (std::size_t i = 0; i < ns.size(); ++i)
     changed[i] = changed[i] || i >= n0 ||
                  (i < horizon_before.size() && horizon_before[i] != ns.horizon[i]);
-  st.rebuilt = rebuild_families(m, memory, n0, changed);
+  // Method B switches parents off and appends children; method A also shrinks the parents'
+  // spacing, which the rows around them see.
+  st.rebuilt = rebuild_families(m, memory, n0, changed, spec.method == NodeGeneration::B);
   const MomentumAndKinetic pk = momentum_and_kinetic(ns);
   st.momentum_after = pk.momentum;
   st.kinetic_after = pk.kinetic;

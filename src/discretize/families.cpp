@@ -59,6 +59,13 @@ class FamilySearch {
                                           {nodes.x[0].data(), nodes.x[1].data(), nodes.x[2].data()},
                                           candidates(nodes, quad, rows), cell_size(nodes, quad, rows)) {}
 
+  // Only the given candidates can be neighbours (ids ascending), in cells of `cell`.
+  FamilySearch(const NodeSet& nodes, const QuadratureSpec& quad,
+               const std::vector<std::uint32_t>& candidates, double cell)
+      : nodes_(nodes), quad_(quad), grid_(nodes.dim,
+                                          {nodes.x[0].data(), nodes.x[1].data(), nodes.x[2].data()},
+                                          candidates, cell) {}
+
   // Calls visit(j, 1/xi, beta) for every family member of node i, in a fixed order.
   template <class Visit>
   void visit(std::size_t i, Visit&& visit) const {
@@ -89,11 +96,16 @@ class FamilySearch {
   }
 
   // Row i into `out`, sorted by neighbour id (independent of the cell layout, friendlier to the
-  // caches).
-  void collect(std::size_t i, std::vector<Entry>& out) const {
-    out.clear();
+  // caches); appended after what `out` holds when `append`.
+  void collect(std::size_t i, std::vector<Entry>& out, bool append = false) const {
+    if (!append) out.clear();
+    const auto first = static_cast<long>(out.size());
     visit(i, [&](std::uint32_t j, double il, float b) { out.push_back({j, b, il}); });
-    std::sort(out.begin(), out.end(), [](const Entry& a, const Entry& b) { return a.j < b.j; });
+    std::sort(out.begin() + first, out.end(), [](const Entry& a, const Entry& b) { return a.j < b.j; });
+  }
+  static double search_radius_of(const NodeSet& nodes, const QuadratureSpec& quad,
+                                 const std::vector<std::uint32_t>& rows) {
+    return search_radius(nodes, quad, rows);
   }
 
   // Writes row i at position `at` of the bond arrays.
@@ -188,7 +200,7 @@ BondFamilies build_families(const NodeSet& nodes, const QuadratureSpec& quad, do
 }
 
 void rebuild_rows(BondFamilies& fam, const NodeSet& nodes, const QuadratureSpec& quad,
-                  const std::vector<char>& rows) {
+                  const std::vector<char>& rows, const std::vector<char>* patch) {
   const std::size_t n = nodes.size(), n_old = fam.num_nodes();
   const std::uint64_t tail = fam.neighbor.size();
   if (fam.ends.empty()) fam.ends.assign(fam.offsets.begin() + 1, fam.offsets.end());
@@ -203,13 +215,36 @@ void rebuild_rows(BondFamilies& fam, const NodeSet& nodes, const QuadratureSpec&
   for (std::size_t i = 0; i < n; ++i)
     if (i < rows.size() && rows[i]) list.push_back(static_cast<std::uint32_t>(i));
   if (list.empty()) return;
-  const FamilySearch search(nodes, quad, list);
+  // Rows to search in full, and rows to patch (their old entries, then the appended nodes).
+  std::vector<std::uint32_t> full, patched, fresh;
+  for (std::uint32_t i : list)
+    (patch && i < n_old && i < patch->size() && (*patch)[i] ? patched : full).push_back(i);
+  if (!patched.empty())
+    for (std::size_t i = n_old; i < n; ++i)
+      if (nodes.flags[i] & kActive) fresh.push_back(static_cast<std::uint32_t>(i));
+  const FamilySearch search = full.empty() ? FamilySearch(nodes, quad, std::vector<std::uint32_t>{}, 1.0)
+                                            : FamilySearch(nodes, quad, full);
+  const FamilySearch newcomers(nodes, quad, fresh,
+                              patched.empty() ? 1.0 : FamilySearch::search_radius_of(nodes, quad, patched));
   // One search per row, into a buffer per row: a window's rows are few, so unlike the full
   // build (which counts first and allocates nothing but the final arrays) the search runs once.
   std::vector<std::vector<Entry>> found(list.size());
 #pragma omp parallel for schedule(dynamic, 64)
-  for (std::size_t r = 0; r < list.size(); ++r)
-    if (nodes.flags[list[r]] & kActive) search.collect(list[r], found[r]);
+  for (std::size_t r = 0; r < list.size(); ++r) {
+    const std::uint32_t i = list[r];
+    if (!(nodes.flags[i] & kActive)) continue;
+    if (!(patch && i < n_old && i < patch->size() && (*patch)[i])) {
+      search.collect(i, found[r]);
+      continue;
+    }
+    // Old neighbours still active, in their (ascending) order and with their bond states;
+    // appended nodes have larger ids, so the row stays sorted.
+    std::vector<Entry>& out = found[r];
+    for (std::uint64_t k = fam.offsets[i]; k < fam.ends[i]; ++k)
+      if (nodes.flags[fam.neighbor[k]] & kActive)
+        out.push_back({fam.neighbor[k], fam.beta[k], fam.inv_length[k]});
+    if (!fresh.empty()) newcomers.collect(i, out, true);
+  }
   std::uint64_t appended = 0, dropped = 0;
   for (std::size_t r = 0; r < list.size(); ++r) {
     appended += found[r].size();

@@ -26,8 +26,13 @@ BondFamilies build_families(const NodeSet& nodes, const QuadratureSpec& quadratu
 // into slack; the other rows are not touched, so the cost follows the flagged rows. When the
 // slack exceeds a quarter of the live bonds, the arrays are compacted once (rows in node order).
 // Bond indices change: nothing may hold one across the call. Transposes are cleared.
+// `patch` (optional): flagged rows whose old family is still right except that some neighbours
+// were switched off and nodes were appended (ids from the old row count on); such a row keeps
+// its entries for the active old neighbours (bond states included) and only the appended nodes
+// are searched. The result equals the searched row's; switching a node's spacing or horizon off
+// this path (method A parents, interface horizons) needs a full search of the rows that see it.
 void rebuild_rows(BondFamilies& bonds, const NodeSet& nodes, const QuadratureSpec& quadrature,
-                  const std::vector<char>& rows);
+                  const std::vector<char>& rows, const std::vector<char>* patch = nullptr);
 
 // Active nodes (ascending ids) inside the bounding box of `seeds` grown by `margin`: the
 // candidates of a local search, found by one pass over the coordinates.
