@@ -3,6 +3,8 @@
 // the pre-crack end, and counts as initiated once it is `advance` ahead.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "analysis/crack_tip.hpp"
 #include "analysis/refinement_coverage.hpp"
 
@@ -130,6 +132,48 @@ TEST(CrackTip, BranchingIsTracedBackToTheForkAndTimedWhenTheTipPassedIt) {
   EXPECT_DOUBLE_EQ((*tr.separation_point())[0], 7.5);
   EXPECT_DOUBLE_EQ((*tr.branching_point())[0], 5.0);
   EXPECT_DOUBLE_EQ(*tr.branching_time(), 1.0);
+}
+
+TEST(CrackTip, TheCrackFoundBeforeIsExtendedOnlyWhileAllOfItStaysDamaged) {
+  // The tracker starts each search from the crack it found last time. A damaged island ahead of
+  // the tip must stay out until a chain reaches it, join when one does, and drop out again when
+  // an event switches off a node of that chain; a fresh tracker must see the same tip each time.
+  CrackTipOptions o;
+  o.origin = {0.0, 0.0, 0.0};
+  o.direction = {1.0, 0.0, 0.0};
+  o.link = 1.5;
+  o.seed_radius = 1.0;
+  CrackTipTracker tr(o);
+  NodeSet ns = row();
+  auto crack = [&](std::initializer_list<double> xs) {
+    for (std::size_t i = 0; i < ns.size(); ++i)
+      for (double x : xs)
+        if (std::abs(ns.x[0][i] - x) < 1e-12 && ns.x[1][i] == 0.0) ns.broken_weight[i] = 0.5;
+  };
+  double t = 0;
+  auto tip = [&]() {
+    t += 1.0;
+    const auto s = tr.observe(ns, t);
+    const auto fresh = CrackTipTracker(o).observe(ns, t);
+    EXPECT_TRUE(s && fresh);
+    EXPECT_EQ(s->position, fresh->position) << "t = " << t;
+    return s->position[0];
+  };
+  crack({0.5, 1.5, 2.5, 7.5, 8.5});
+  EXPECT_DOUBLE_EQ(tip(), 2.5);  // the island at 7.5-8.5 is not this crack
+  crack({3.5, 4.5, 5.5});
+  EXPECT_DOUBLE_EQ(tip(), 5.5);
+  crack({6.5});
+  EXPECT_DOUBLE_EQ(tip(), 8.5);  // linked through 6.5
+  // An event replaces the node at 3.5 by a damaged one nearby: the chain holds.
+  ns.flags[3] &= static_cast<std::uint8_t>(~kActive);
+  const std::size_t q = ns.append({3.5, 0.2, 0.0}, 1.0, 1.0);
+  ns.family_weight[q] = 1.0;
+  ns.broken_weight[q] = 0.5;
+  EXPECT_DOUBLE_EQ(tip(), 8.5);
+  // Another switches 6.5 off with no replacement: 5.5 and 7.5 are 2 apart, beyond the link.
+  ns.flags[6] &= static_cast<std::uint8_t>(~kActive);
+  EXPECT_DOUBLE_EQ(tip(), 5.5);
 }
 
 TEST(RefinementCoverage, CountsRefinedNodesAwayFromCracksAndCracksLeftCoarse) {

@@ -15,11 +15,24 @@ Vec3 transverse_of(const Vec3& d) { return {-d[1], d[0], 0.0}; }
 std::vector<std::uint32_t> CrackTipTracker::crack_nodes(const NodeSet& ns) const {
   // Damaged nodes, then the ones linked to the initial tip through chains of damaged nodes at
   // most `link` apart: cracks nucleating elsewhere (edges, corners) are not this crack.
+  auto damaged = [&](std::size_t i) {
+    return (ns.flags[i] & kActive) && ns.damage(i) > opt_.threshold;
+  };
   std::vector<std::uint32_t> dmg;
   for (std::size_t i = 0; i < ns.size(); ++i)
-    if ((ns.flags[i] & kActive) && ns.damage(i) > opt_.threshold)
-      dmg.push_back(static_cast<std::uint32_t>(i));
+    if (damaged(i)) dmg.push_back(static_cast<std::uint32_t>(i));
   if (dmg.empty() || !(opt_.link > 0)) return dmg;
+  // Between refinement events damage only spreads: if every node of the crack found last time is
+  // still active and damaged, that crack is still connected (links depend on reference positions
+  // only) and can only have grown, so the search starts from it; else (an event switched some of
+  // its nodes off) the crack is found afresh. Same nodes either way.
+  linked_.resize(ns.size(), 0);
+  bool kept = true;
+  for (std::uint32_t i : last_crack_) kept = kept && damaged(i);
+  if (!kept) {
+    for (std::uint32_t i : last_crack_) linked_[i] = 0;
+    last_crack_.clear();
+  }
   std::array<std::vector<double>, 3> c;
   for (int d = 0; d < 3; ++d) {
     c[d].resize(dmg.size());
@@ -28,9 +41,20 @@ std::vector<std::uint32_t> CrackTipTracker::crack_nodes(const NodeSet& ns) const
   CellGrid grid(ns.dim, {c[0].data(), c[1].data(), c[2].data()}, dmg.size(), opt_.link);
   std::vector<char> seen(dmg.size(), 0);
   std::vector<std::uint32_t> queue;
+  for (std::size_t k = 0; k < dmg.size(); ++k) seen[k] = linked_[dmg[k]];
   grid.for_each_within(opt_.origin, opt_.seed_radius, [&](std::uint32_t k, double) {
     if (!seen[k]) seen[k] = 1, queue.push_back(k);
   });
+  // Damaged nodes next to the known crack join it (then their neighbours, below).
+  if (!last_crack_.empty())
+    for (std::uint32_t k = 0; k < dmg.size(); ++k) {
+      if (seen[k]) continue;
+      bool near = false;
+      grid.for_each_within({c[0][k], c[1][k], c[2][k]}, opt_.link, [&](std::uint32_t l, double) {
+        near = near || (seen[l] && linked_[dmg[l]]);
+      });
+      if (near) seen[k] = 1, queue.push_back(k);
+    }
   for (std::size_t q = 0; q < queue.size(); ++q) {
     const std::uint32_t k = queue[q];
     grid.for_each_within({c[0][k], c[1][k], c[2][k]}, opt_.link, [&](std::uint32_t l, double) {
@@ -40,6 +64,8 @@ std::vector<std::uint32_t> CrackTipTracker::crack_nodes(const NodeSet& ns) const
   std::vector<std::uint32_t> out;
   for (std::size_t k = 0; k < dmg.size(); ++k)
     if (seen[k]) out.push_back(dmg[k]);
+  for (std::uint32_t i : out) linked_[i] = 1;
+  last_crack_ = out;
   return out;
 }
 

@@ -80,6 +80,9 @@ class CrackTipTracker {
   std::optional<Vec3> branching_point_;
   std::optional<double> separation_time_;
   std::optional<Vec3> separation_point_;
+  // crack_nodes() of the previous call (ids) and their flags, where the next search starts.
+  mutable std::vector<std::uint32_t> last_crack_;
+  mutable std::vector<char> linked_;
 };
 
 }  // namespace periadapt
