@@ -3,6 +3,7 @@
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <chrono>
 
 #include "adapt/coarsen.hpp"
 #include "analysis/energy.hpp"
@@ -85,6 +86,7 @@ const std::vector<char>& Adaptor::refinable() {
 void Adaptor::refine(const std::vector<std::uint32_t>& parents, std::size_t identified,
                      const char* trigger) {
   if (parents.empty()) return;
+  const auto t0 = std::chrono::steady_clock::now();
   RefinementEvent ev;
   ev.step = vv_.step_count();
   ev.time = vv_.time();
@@ -108,6 +110,9 @@ void Adaptor::refine(const std::vector<std::uint32_t>& parents, std::size_t iden
         "step {:.4e} s of the refined grid (node {}, level {}); lower solver.time_step",
         vv_.time(), vv_.dt(), s.dt, s.node, static_cast<int>(m_.nodes.level[s.node])));
   vv_.refresh(&ev.stats.rebuilt);
+  // The event's cost includes the refresh (forces of the rebuilt rows, their step rates).
+  events_.back().stats.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 bool Adaptor::coarsen_quiet(const std::vector<double>& E, double alpha) {
@@ -149,6 +154,7 @@ bool Adaptor::coarsen_quiet(const std::vector<double>& E, double alpha) {
   ev.step = vv_.step_count();
   ev.time = vv_.time();
   ev.trigger = "coarsen";
+  const auto t0 = std::chrono::steady_clock::now();
   ev.identified = quiet.size();
   vv_.synchronize_velocities();
   const double h0 = spec_.conserve_energy ? total_energy() : 0.0;
@@ -162,6 +168,8 @@ bool Adaptor::coarsen_quiet(const std::vector<double>& E, double alpha) {
   ev.dt_stable = stable_time_step(m_, ev.stats.rebuilt).dt;
   events_.push_back(ev);
   vv_.refresh(&events_.back().stats.rebuilt);
+  events_.back().stats.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return true;
 }
 

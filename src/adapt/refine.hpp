@@ -27,7 +27,7 @@ struct RefineStats {
   std::array<double, 3> momentum_after{0, 0, 0};
   double kinetic_before = 0, kinetic_after = 0;
   double momentum_scale = 0;  // sum of m |v| before the event
-  double seconds = 0;
+  double seconds = 0;  // wall time (set again by the Adaptor to include the solver refresh)
   std::vector<std::uint32_t> rebuilt;  // nodes whose families were searched again
 };
 
