@@ -216,9 +216,11 @@ void rebuild_rows(BondFamilies& fam, const NodeSet& nodes, const QuadratureSpec&
     if (i < rows.size() && rows[i]) list.push_back(static_cast<std::uint32_t>(i));
   if (list.empty()) return;
   // Rows to search in full, and rows to patch (their old entries, then the appended nodes).
+  auto patched_row = [&](std::uint32_t i) {
+    return patch && i < n_old && i < patch->size() && (*patch)[i];
+  };
   std::vector<std::uint32_t> full, patched, fresh;
-  for (std::uint32_t i : list)
-    (patch && i < n_old && i < patch->size() && (*patch)[i] ? patched : full).push_back(i);
+  for (std::uint32_t i : list) (patched_row(i) ? patched : full).push_back(i);
   if (!patched.empty())
     for (std::size_t i = n_old; i < n; ++i)
       if (nodes.flags[i] & kActive) fresh.push_back(static_cast<std::uint32_t>(i));
@@ -233,7 +235,7 @@ void rebuild_rows(BondFamilies& fam, const NodeSet& nodes, const QuadratureSpec&
   for (std::size_t r = 0; r < list.size(); ++r) {
     const std::uint32_t i = list[r];
     if (!(nodes.flags[i] & kActive)) continue;
-    if (!(patch && i < n_old && i < patch->size() && (*patch)[i])) {
+    if (!patched_row(i)) {
       search.collect(i, found[r]);
       continue;
     }
