@@ -64,6 +64,18 @@ std::vector<std::uint32_t> all_active(const Model& m) {
 
 namespace {
 
+// Refines (method B) the block of nodes within 3 mm of (16, 10) mm, around the crack tip of
+// cracked_plate_deck.
+RefineStats refine_tip_block(Model& m) {
+  std::vector<std::uint32_t> parents;
+  for (std::uint32_t i = 0; i < m.nodes.size(); ++i)
+    if (std::abs(m.nodes.x[0][i] - 0.016) < 0.003 && std::abs(m.nodes.x[1][i] - 0.01) < 0.003)
+      parents.push_back(i);
+  AdaptSpec spec;
+  spec.enabled = true;
+  return refine_nodes(m, parents, spec);
+}
+
 // A pre-cracked plate run 40 steps (energy densities asked for at the last), then a block of
 // parents around the crack tip refined: where the partial-refresh tests start.
 struct TipEvent {
@@ -77,13 +89,7 @@ struct TipEvent {
     vv.request_energy_at(40);
     for (int s = 0; s < 40; ++s) EXPECT_TRUE(vv.step());
     energy_before_event = vv.energy_density_now() != nullptr;
-    std::vector<std::uint32_t> parents;
-    for (std::uint32_t i = 0; i < m.nodes.size(); ++i)
-      if (std::abs(m.nodes.x[0][i] - 0.016) < 0.003 && std::abs(m.nodes.x[1][i] - 0.01) < 0.003)
-        parents.push_back(i);
-    AdaptSpec spec;
-    spec.enabled = true;
-    st = refine_nodes(m, parents, spec);
+    st = refine_tip_block(m);
   }
 };
 
@@ -131,13 +137,7 @@ TEST(Adapt, RefreshOfTheRebuiltRowsKeepsTheReactionsOfAFullPass) {
       vv.set_undo(undo);
       for (int s = 0; s < 40; ++s) EXPECT_TRUE(vv.step());
       if (undo) vv.undo_last_step();
-      std::vector<std::uint32_t> parents;
-      for (std::uint32_t i = 0; i < m.nodes.size(); ++i)
-        if (std::abs(m.nodes.x[0][i] - 0.016) < 0.003 && std::abs(m.nodes.x[1][i] - 0.01) < 0.003)
-          parents.push_back(i);
-      AdaptSpec spec;
-      spec.enabled = true;
-      const RefineStats st = refine_nodes(m, parents, spec);
+      const RefineStats st = refine_tip_block(m);
       for (std::uint32_t i : st.rebuilt) EXPECT_GT(m.nodes.x[0][i], 0.005) << "driven row rebuilt";
       vv.refresh(full ? nullptr : &st.rebuilt);
       Result r;
