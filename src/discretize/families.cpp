@@ -103,10 +103,6 @@ class FamilySearch {
     visit(i, [&](std::uint32_t j, double il, float b) { out.push_back({j, b, il}); });
     std::sort(out.begin() + first, out.end(), [](const Entry& a, const Entry& b) { return a.j < b.j; });
   }
-  static double search_radius_of(const NodeSet& nodes, const QuadratureSpec& quad,
-                                 const std::vector<std::uint32_t>& rows) {
-    return search_radius(nodes, quad, rows);
-  }
 
   // Writes row i at position `at` of the bond arrays.
   void write(std::size_t i, std::uint64_t at, BondFamilies& fam, std::vector<Entry>& scratch) const {
@@ -123,6 +119,15 @@ class FamilySearch {
     }
   }
 
+  // The largest search radius of the rows.
+  static double search_radius(const NodeSet& nodes, const QuadratureSpec& quad,
+                              const std::vector<std::uint32_t>& rows) {
+    double r = 0;
+    for (std::uint32_t i : rows)
+      r = std::max(r, quadrature_search_radius(quad.rule, nodes.dim, nodes.horizon[i], nodes.spacing[i]));
+    return std::max(r * (1 + 1e-9), 1e-300);
+  }
+
  private:
   static double search_radius(const NodeSet& nodes, const QuadratureSpec& quad) {
     double hmax = 0, dxmax = 0;
@@ -131,13 +136,6 @@ class FamilySearch {
       dxmax = std::max(dxmax, nodes.spacing[i]);
     }
     return std::max(quadrature_search_radius(quad.rule, nodes.dim, hmax, dxmax), 1e-300);
-  }
-  static double search_radius(const NodeSet& nodes, const QuadratureSpec& quad,
-                              const std::vector<std::uint32_t>& rows) {
-    double r = 0;
-    for (std::uint32_t i : rows)
-      r = std::max(r, quadrature_search_radius(quad.rule, nodes.dim, nodes.horizon[i], nodes.spacing[i]));
-    return std::max(r * (1 + 1e-9), 1e-300);
   }
   // The smallest search radius of the rows, but at least a quarter of the largest (a query then
   // spans at most 9 cells per axis).
@@ -227,7 +225,7 @@ void rebuild_rows(BondFamilies& fam, const NodeSet& nodes, const QuadratureSpec&
   const FamilySearch search = full.empty() ? FamilySearch(nodes, quad, std::vector<std::uint32_t>{}, 1.0)
                                             : FamilySearch(nodes, quad, full);
   const FamilySearch newcomers(nodes, quad, fresh,
-                              patched.empty() ? 1.0 : FamilySearch::search_radius_of(nodes, quad, patched));
+                              patched.empty() ? 1.0 : FamilySearch::search_radius(nodes, quad, patched));
   // One search per row, into a buffer per row: a window's rows are few, so unlike the full
   // build (which counts first and allocates nothing but the final arrays) the search runs once.
   std::vector<std::vector<Entry>> found(list.size());
