@@ -758,7 +758,9 @@ TEST(Adapt, InterfaceHorizonsAfterSuccessiveEventsEqualABruteForceRecompute) {
       if (d2 <= reach * reach) dmin = std::min(dmin, std::sqrt(d2));
     }
     const double want = std::isfinite(dmin) ? std::max(base, base / ns.spacing[i] * dmin) : base;
-    EXPECT_EQ(ns.horizon[i], want) << "node " << i << " level " << int(ns.level[i]);
+    // To round-off: mirror-image coarse nodes at the same distance give distances an ulp apart
+    // (with or without FMA contraction), and the event may have taken the other one.
+    EXPECT_NEAR(ns.horizon[i], want, 1e-12 * want) << "node " << i << " level " << int(ns.level[i]);
     enlarged += want > base;
   }
   // Not vacuous: many interface nodes carry an enlarged horizon, and interior ones do not.
