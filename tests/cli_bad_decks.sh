@@ -15,6 +15,8 @@ check overlay_dual_horizon.yaml "overlay_dual_horizon.yaml:5:3: key 'damage': th
 check overlay_sampling.yaml "overlay_sampling.yaml:5:29: key 'damage.overlay.sampling': 'everywhere' is not allowed; allowed: three_pairs, whole_bond"
 check multirate_lps.yaml "multirate_lps.yaml:7:14: key 'solver.multirate': multi-rate stepping needs row-local forces: formulation: pmb"
 check body_outside.yaml "body_outside.yaml:5:9: key 'discretization.body': the body cannot be an outside (complement) region"
+# run refuses a time step above the finest level's stable step; so must check.
+check adapt_time_step.yaml "adapt_time_step.yaml: key 'solver.time_step': 1.5e-07 s exceeds the stable step expected at refinement level 1"
 out=$("$bin" check "$dir/does_not_exist.yaml" 2>&1); rc=$?
 [[ $rc -eq 2 && "$out" == *"cannot open"* ]] && echo "ok   missing file: $out" || { echo "FAIL missing file: $rc $out"; fail=1; }
 # Only a solve can tell that a static system is singular: `run`, not `check`.

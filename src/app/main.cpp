@@ -66,7 +66,10 @@ int check(const std::string& path) {
                  dk.load_steps, dk.relax_tolerance);
   } else {
     fmt::print("dt_crit         {:.6e} s (Silling-Askari, node {})\n", ts.dt_crit, ts.limiting_node);
-    fmt::print("dt              {:.6e} s{}\n", ts.dt, dk.time_step ? " (deck)" : " (safety x dt_crit)");
+    fmt::print("dt              {:.6e} s{}\n", ts.dt,
+               dk.time_step            ? " (deck)"
+               : ts.level_ratio < 1.0 ? fmt::format(" (safety x dt_crit x {:.4g}, the finest level's bound)", ts.level_ratio)
+                                       : std::string(" (safety x dt_crit)"));
     fmt::print("steps           {} (end time {:.6e} s)\n", ts.steps, ts.steps * ts.dt);
     if (dk.multirate) {
       fmt::print("multi-rate      nodes whose stable step is at least k dt / {:.3g} take k dt, "
@@ -104,10 +107,15 @@ int check(const std::string& path) {
   if (dk.adapt.enabled) {
     const AdaptSpec& a = dk.adapt;
     std::string trig;
-    if (a.energy_fraction) trig += fmt::format("energy W >= {:.3g} W_max", *a.energy_fraction);
+    if (a.stretch_fraction)
+      trig += fmt::format("bond stretch >= {:.3g} x the level-{} critical stretch",
+                          *a.stretch_fraction, a.max_level);
+    if (a.energy_fraction)
+      trig += std::string(trig.empty() ? "" : " and ") +
+              fmt::format("energy W >= {:.3g} W_max", *a.energy_fraction);
     if (a.damage_trigger) trig += std::string(trig.empty() ? "" : " and ") + "damage growth";
-    fmt::print("adapt           method B to level {}, {}-scaling, {}, from t = {:.4g} s{}\n",
-               a.max_level,
+    fmt::print("adapt           method {} to level {}, {}-scaling, {}, from t = {:.4g} s{}\n",
+               a.method == NodeGeneration::A ? "A" : "B", a.max_level,
                a.scaling == HorizonScaling::Delta ? "delta" : a.scaling == HorizonScaling::M ? "m" : "delta-m",
                trig, a.start_time, a.interface_horizon ? ", interface-horizon correction" : "");
     for (int l = 1; l <= a.max_level; ++l)

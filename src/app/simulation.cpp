@@ -39,7 +39,17 @@ std::size_t active_count(const NodeSet& ns) {
 
 TimeStepChoice choose_time_step(const Deck& dk, const Model& m) {
   const StableStep s = stable_time_step(m);
-  TimeStepChoice c{0, s.dt, s.node, 0};
+  TimeStepChoice c{0, s.dt, s.node, 0, 1.0};
+  if (dk.adapt.enabled && dk.solver == Deck::SolverType::Explicit) {
+    // The stable step scales with the horizon (sum_j C_ij V_j ~ c delta^(dim-1) ~ 1/delta^2):
+    // the finest level's bound applies from the first event on, so it is checked (and the
+    // default step chosen) now rather than when the first refinement happens. Relative to the
+    // horizon of the node that limits the step now: after an initial refinement that node may
+    // already be on a finer level.
+    const double h_lim = m.nodes.horizon[s.node];
+    for (int l = 1; l <= dk.adapt.max_level; ++l)
+      c.level_ratio = std::min(c.level_ratio, level_horizon(m, dk.adapt, l) / h_lim);
+  }
   if (dk.time_step) {
     if (*dk.time_step > s.dt && !dk.allow_unstable_time_step)
       throw DeckError(dk.file, 0, 0, "solver.time_step",
@@ -47,9 +57,17 @@ TimeStepChoice choose_time_step(const Deck& dk, const Model& m) {
                                   "bound, limited by node {}); use a smaller value or set "
                                   "solver.allow_unstable_time_step: true",
                                   *dk.time_step, s.dt, s.node));
+    if (*dk.time_step > s.dt * c.level_ratio * (1 + 1e-9) && !dk.allow_unstable_time_step)
+      throw DeckError(dk.file, 0, 0, "solver.time_step",
+                      fmt::format("{:.4g} s exceeds the stable step expected at refinement level "
+                                  "{} (about {:.4g} s = {:.4g} x the level-0 bound); lower it, "
+                                  "leave it out (the default accounts for the finest level), "
+                                  "or lower adapt.max_level",
+                                  *dk.time_step, dk.adapt.max_level, s.dt * c.level_ratio,
+                                  c.level_ratio));
     c.dt = *dk.time_step;
   } else {
-    c.dt = dk.safety * s.dt;
+    c.dt = dk.safety * s.dt * c.level_ratio;
   }
   if (!std::isfinite(c.dt) || c.dt <= 0)
     throw DeckError(dk.file, 0, 0, "solver", "no stable time step: the model has no bonds");
@@ -198,22 +216,6 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
     }
   };
 
-  if (dk.adapt.enabled && !dk.allow_unstable_time_step) {
-    // The stable step scales with the horizon (sum_j C_ij V_j ~ c delta^(dim-1) ~ 1/delta^2):
-    // check the finest level now rather than when the first refinement happens.
-    // Relative to the horizon of the node that limits the step now: after an initial refinement
-    // that node may already be on a finer level.
-    const double h_lim = ns.horizon[ts.limiting_node];
-    double ratio = 1.0;
-    for (int l = 1; l <= dk.adapt.max_level; ++l)
-      ratio = std::min(ratio, level_horizon(m, dk.adapt, l) / h_lim);
-    if (ts.dt > ts.dt_crit * ratio * (1 + 1e-9))
-      throw DeckError(dk.file, 0, 0, "solver.time_step",
-                      fmt::format("{:.4g} s exceeds the stable step expected at refinement level "
-                                  "{} (about {:.4g} s = {:.4g} x the level-0 bound); lower it, "
-                                  "or lower adapt.max_level",
-                                  ts.dt, dk.adapt.max_level, ts.dt_crit * ratio, ratio));
-  }
   std::unique_ptr<Adaptor> adaptor;
   std::ofstream refinement_log;
   std::size_t events_logged = 0;

@@ -28,6 +28,7 @@ struct TimeStepChoice {
   double dt, dt_crit;
   std::size_t limiting_node;
   long steps;
+  double level_ratio = 1.0;  // finest level's stable step / dt_crit (AGRS), 1 without
 };
 TimeStepChoice choose_time_step(const Deck& deck, const Model& model);
 
