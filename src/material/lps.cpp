@@ -40,6 +40,7 @@ void dilatation(const NodeSet& ns, const BondFamilies& bf, const LpsConstants& c
   sc.m.assign(n, 0.0);
   sc.theta.assign(n, 0.0);
   sc.packed.assign(4 * n, 0.0);
+  sc.reach.assign(n, 0.0);
   const double* yp = ns.cur.data();
   const std::uint32_t* nbr = bf.neighbor.data();
   const double* inv_len = bf.inv_length.data();
@@ -49,8 +50,8 @@ void dilatation(const NodeSet& ns, const BondFamilies& bf, const LpsConstants& c
     if (!(ns.flags[i] & kActive)) continue;
     const double inv_delta = 1.0 / ns.horizon[i];
     const double yi0 = yp[4 * i], yi1 = D > 1 ? yp[4 * i + 1] : 0.0, yi2 = D > 2 ? yp[4 * i + 2] : 0.0;
-    double m = 0, th = 0;
-#pragma omp simd reduction(+ : m, th)
+    double m = 0, th = 0, reach = 0;
+#pragma omp simd reduction(+ : m, th) reduction(max : reach)
     for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {
       const std::size_t j = 4 * static_cast<std::size_t>(nbr[k]);
       const double d0 = yp[j] - yi0, d1 = D > 1 ? yp[j + 1] - yi1 : 0.0, d2 = D > 2 ? yp[j + 2] - yi2 : 0.0;
@@ -60,11 +61,13 @@ void dilatation(const NodeSet& ns, const BondFamilies& bf, const LpsConstants& c
       double wv = yp[j + 3];
       if constexpr (S != InfluenceShape::Constant) wv *= omega<S>(x * inv_delta);
       m += wv * ab * x * x;
+      reach = std::max(reach, x);
       th += wv * bp * x * (std::sqrt(d0 * d0 + d1 * d1 + d2 * d2) - x);
     }
     const double theta = m > 0 ? c.D * th / m : 0.0;
     sc.m[i] = m;
     sc.theta[i] = theta;
+    sc.reach[i] = reach;
     double* p = &sc.packed[4 * i];
     p[0] = m > 0 ? c.D * c.kappa * theta / m : 0.0;
     p[1] = m > 0 ? c.alpha * c.mu / m : 0.0;
@@ -80,6 +83,7 @@ std::size_t forces(NodeSet& ns, BondFamilies& bf, const LpsConstants& c, bool al
   const std::size_t n = ns.size();
   const double* yp = ns.cur.data();
   const double* pk = sc.packed.data();
+  const double* reach = sc.reach.data();
   const std::uint32_t* nbr = bf.neighbor.data();
   const double* inv_len = bf.inv_length.data();
   float* beta = bf.beta.data();
@@ -103,10 +107,10 @@ std::size_t forces(NodeSet& ns, BondFamilies& bf, const LpsConstants& c, bool al
       const double bb = beta[k];
       const double bp = 0.5 * (bb + std::abs(bb));
       const double e = r - x;
-      double wi = 1.0, wj = 1.0;
+      double wi = 1.0, wj = static_cast<double>(x <= reach[nbr[k]]);
       if constexpr (S != InfluenceShape::Constant) {
         wi = omega<S>(x * idi);
-        wj = omega<S>(x * pk[j + 3]);
+        wj *= omega<S>(x * pk[j + 3]);
       }
       const double edi = e - Ci * x;
       const double t = wi * (Ai * x + Bi * edi) + wj * (pk[j] * x + pk[j + 1] * (e - pk[j + 2] * x));
@@ -142,10 +146,10 @@ std::size_t forces(NodeSet& ns, BondFamilies& bf, const LpsConstants& c, bool al
           }
           continue;
         }
-        double wi = 1.0, wj = 1.0;
+        double wi = 1.0, wj = static_cast<double>(x <= reach[nbr[k]]);
         if constexpr (S != InfluenceShape::Constant) {
           wi = omega<S>(x * idi);
-          wj = omega<S>(x * pk[j + 3]);
+          wj *= omega<S>(x * pk[j + 3]);
         }
         const double edi = e - Ci * x;
         const double t = wi * (Ai * x + Bi * edi) + wj * (pk[j] * x + pk[j + 1] * (e - pk[j + 2] * x));

@@ -4,7 +4,9 @@
 //   m_i     = sum_j w x^2 beta V_j                                 (weighted volume, Eq. 2.9)
 //   theta_i = (D / m_i) sum_j w x e beta V_j,  e = |Y| - x           (dilatation, D = 2 or 3)
 //   t_ij    = (D kappa theta_i / m_i) w x + (alpha / m_i) w (e - theta_i x / D)
-//   f_i     = sum_j (t_ij + t_ji) beta V_j Y/|Y|
+//   f_i     = sum_j (t_ij + t_ji) beta V_j Y/|Y|, t_ji only where i is in j's family (on a
+//             refined grid a coarse node's family reaches fine nodes whose horizons do not reach
+//             back; a t_ji there would act on i alone, with no reaction, and feeds energy in)
 // with 3D: kappa = K, alpha = 15 mu; 2D: kappa = the in-plane bulk modulus (plane strain
 // E / (2 (1 + nu)(1 - 2 nu)), plane stress E / (2 (1 - nu))), alpha = 8 mu. With this 2D
 // dilatation the deviatoric part is orthogonal to x, so the force state needs no extra term (the
@@ -38,6 +40,9 @@ double lps_critical_stretch(int dim, const LpsConstants& c, double delta, double
 // Per-node scratch of the two-pass kernel.
 struct LpsScratch {
   std::vector<double> m, theta;
+  // Longest bond of each family: node i lies in j's family exactly when |xi_ij| <= reach_j (a
+  // family holds every node within its search radius), so j's state acts on the bond only then.
+  std::vector<double> reach;
   // Packed per node for the force pass: [D kappa theta / m, alpha mu / m, theta / D, 1/delta].
   std::vector<double> packed;
 };
