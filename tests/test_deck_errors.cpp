@@ -117,3 +117,29 @@ TEST(DeckErrors, PoissonRatioContradictingTheBondBasedModel) {
   EXPECT_EQ(e.key(), "material.poisson_ratio");
   EXPECT_TRUE(contains(e, "1/3")) << e.what();
 }
+
+TEST(DeckErrors, StretchTriggerIsAFractionOfTheCriticalStretch) {
+  const DeckError e = expect_error(std::string(kGood) + "adapt: {max_level: 1, stretch_trigger: 1.5}\n");
+  EXPECT_TRUE(contains(e, "bad.yaml:15:")) << e.what();
+  EXPECT_TRUE(contains(e, "adapt.stretch_trigger")) << e.what();
+  EXPECT_TRUE(contains(e, "(0, 1]")) << e.what();
+}
+
+TEST(DeckErrors, AdaptWithoutTriggersTakesTheDocumentedDefaults) {
+  // adapt: {max_level: N} alone: stretch trigger at 0.5, damage trigger, interface horizons,
+  // boundaries kept coarse. Naming any trigger switches to the thesis' explicit form.
+  const Deck d = parse_deck(std::string(kGood) + "adapt: {max_level: 1}\n", "good.yaml");
+  ASSERT_TRUE(d.adapt.enabled);
+  ASSERT_TRUE(d.adapt.stretch_fraction.has_value());
+  EXPECT_EQ(*d.adapt.stretch_fraction, kDefaultStretchTrigger);
+  EXPECT_TRUE(d.adapt.damage_trigger);
+  EXPECT_TRUE(d.adapt.interface_horizon);
+  EXPECT_TRUE(d.adapt.keep_boundaries_coarse);
+  EXPECT_FALSE(d.adapt.energy_fraction.has_value());
+  const Deck e = parse_deck(std::string(kGood) + "adapt: {max_level: 1, energy_trigger: 0.5}\n",
+                            "good.yaml");
+  EXPECT_FALSE(e.adapt.stretch_fraction.has_value());
+  EXPECT_FALSE(e.adapt.damage_trigger);
+  EXPECT_FALSE(e.adapt.interface_horizon);
+  EXPECT_FALSE(e.adapt.keep_boundaries_coarse);
+}

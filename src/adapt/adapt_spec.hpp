@@ -27,6 +27,13 @@ enum class NodeGeneration {
       // interface cells lose the area the new cells cover (Eq. 3.4)
 };
 
+// beta of the stretch trigger when a deck names no trigger: a node is refined once a bond reaches
+// half the critical stretch of its children. At a smooth stress raiser both grids see the same
+// stretch, so that is half the load that breaks the finer grid there; ahead of a crack the
+// largest stretch scales as delta^(-1/2) like s0 (the K field sampled over a horizon), so it is
+// 1/sqrt(2) of the critical stress intensity for each level of refinement (delta-scaling).
+inline constexpr double kDefaultStretchTrigger = 0.5;
+
 struct AdaptSpec {
   bool enabled = false;
   NodeGeneration method = NodeGeneration::B;
@@ -39,12 +46,16 @@ struct AdaptSpec {
   double start_time = 0.0;          // t_st: no refinement before
   int check_every = 1;              // steps between energy-trigger checks
   std::optional<double> energy_fraction;  // energy trigger W >= alpha W_max (None: off)
+  // stretch trigger: an intact bond at >= beta x the finest level's s0 (None: off)
+  std::optional<double> stretch_fraction;
   bool damage_trigger = false;            // damage trigger: delta phi > 0, step redone
   std::optional<Shape> region;            // refinement allowed only inside
   bool total_energy = false;              // trigger on W + kinetic energy density (Bobaru)
   bool coarsen = false;                   // return quiet refined zones to their parents
   double visibility_factor = 1.0;         // visibility radius in horizons of the flagged node
   bool conserve_energy = false;           // rescale rebuilt rows' velocities so events keep K + U
+  // no-fail nodes (they cannot crack) and the families of loaded and driven nodes stay coarse
+  bool keep_boundaries_coarse = false;
 };
 
 }  // namespace periadapt

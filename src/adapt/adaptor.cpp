@@ -181,7 +181,9 @@ bool Adaptor::step() {
   // over the bonds (and only there: the other steps run the plain force kernel). With multi-rate
   // stepping each row's W comes from its own latest pass: a slow row's is at most k - 1 steps
   // old, as are its forces, and the rows idle at the check step need no pass of their own.
-  const bool check = spec_.energy_fraction && (vv_.step_count() + 1) % spec_.check_every == 0;
+  const bool check_step = (vv_.step_count() + 1) % spec_.check_every == 0;
+  const bool check = spec_.energy_fraction && check_step;
+  const bool stretch_check = check_step;
   if (check && !vv_.multirate()) vv_.request_energy_at(vv_.step_count() + 1);
   if (spec_.damage_trigger) {
     vv_.set_undo(true);
@@ -212,6 +214,11 @@ bool Adaptor::step() {
     }
   } else if (!vv_.step()) {
     return false;
+  }
+  if (spec_.stretch_fraction && stretch_check) {
+    const std::vector<char>& refinable = this->refinable();
+    const auto ids = stretch_trigger(m_, spec_, *spec_.stretch_fraction, refinable);
+    refine(parents_for(ids, &refinable), ids.size(), "stretch");
   }
   if (check) {
     if (const std::vector<double>* w = vv_.energy_density_recent())

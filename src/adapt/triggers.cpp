@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/cell_grid.hpp"
+#include "adapt/refine.hpp"
 #include "discretize/families.hpp"
 
 namespace periadapt {
@@ -14,6 +15,7 @@ std::vector<char> refinable_nodes(const Model& m, const AdaptSpec& spec) {
   for (std::size_t i = 0; i < ns.size(); ++i) {
     if (!(ns.flags[i] & kActive) || (ns.flags[i] & kBoundary) || ns.level[i] >= spec.max_level)
       continue;
+    if (spec.keep_boundaries_coarse && (ns.flags[i] & kNoFail)) continue;
     if (spec.region &&
         !spec.region->contains({ns.x[0][i], ns.x[1][i], ns.x[2][i]}, 1e-9 * ns.spacing[i]))
       continue;
@@ -21,6 +23,19 @@ std::vector<char> refinable_nodes(const Model& m, const AdaptSpec& spec) {
   }
   for (const BodyLoad& l : m.loads)
     for (std::uint32_t i : l.nodes) r[i] = 0;
+  if (spec.keep_boundaries_coarse) {
+    // A refined node bonded to a loaded or driven coarse one pulls on it with its own, larger
+    // micromodulus and gets only the coarse one's back (source-horizon pairing): a fine zone
+    // reaching a loaded row makes that row 35% softer (tests/test_agrs_invisible.cpp). So the
+    // families of loaded and driven nodes stay coarse.
+    auto keep = [&](std::uint32_t i) {
+      for (std::uint64_t k = m.bonds.begin(i); k < m.bonds.end(i); ++k) r[m.bonds.neighbor[k]] = 0;
+    };
+    for (const BodyLoad& l : m.loads)
+      for (std::uint32_t i : l.nodes) keep(i);
+    for (const PrescribedMotion& pm : m.motions)
+      for (std::uint32_t i : pm.nodes) keep(i);
+  }
   return r;
 }
 
@@ -38,6 +53,38 @@ std::vector<std::uint32_t> energy_trigger(const Model& m, const std::vector<doub
   for (std::size_t i = 0; i < ns.size(); ++i)
     if ((refinable[i] || ((ns.flags[i] & kActive) && ns.level[i] > 0)) && W[i] >= alpha * wmax)
       out.push_back(static_cast<std::uint32_t>(i));
+  return out;
+}
+
+std::vector<std::uint32_t> stretch_trigger(const Model& m, const AdaptSpec& spec, double beta,
+                                           const std::vector<char>& refinable) {
+  const NodeSet& ns = m.nodes;
+  const BondFamilies& bf = m.bonds;
+  const double eth = m.material.thermal_strain;
+  const std::size_t n = ns.size();
+  std::vector<char> hot(n, 0);
+#pragma omp parallel for schedule(guided, 64)
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!refinable[i]) continue;
+    // s0 ~ delta^(-1/2) for every law and scaling (thesis Eqs. 2.15, 2.21): the critical stretch
+    // of this node's children.
+    const double limit = beta * ns.critical_stretch[i] *
+                         std::sqrt(ns.horizon[i] / level_horizon(m, spec, ns.level[i] + 1));
+    const double yi[3] = {ns.cur[4 * i], ns.cur[4 * i + 1], ns.cur[4 * i + 2]};
+    for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {
+      if (!BondFamilies::intact(bf.beta[k]) || !bf.breakable(k)) continue;
+      const std::size_t j = 4 * static_cast<std::size_t>(bf.neighbor[k]);
+      double r2 = 0;
+      for (int d = 0; d < ns.dim; ++d) r2 += (ns.cur[j + d] - yi[d]) * (ns.cur[j + d] - yi[d]);
+      if (std::sqrt(r2) * bf.inv_length[k] - 1.0 - eth >= limit) {
+        hot[i] = 1;
+        break;
+      }
+    }
+  }
+  std::vector<std::uint32_t> out;
+  for (std::size_t i = 0; i < n; ++i)
+    if (hot[i]) out.push_back(static_cast<std::uint32_t>(i));
   return out;
 }
 

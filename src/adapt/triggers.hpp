@@ -2,7 +2,8 @@
 // Refinement triggers (thesis Algorithms A.1, A.2) and the visibility criterion (Bobaru et al.
 // 2009, 5.1; thesis Fig. 3.6). A node can be refined when it is active, below the maximum level,
 // inside the allowed region and carries no load or prescribed motion (thesis, MSc 2.1: nodes with
-// boundary conditions are never refined).
+// boundary conditions are never refined); with spec.keep_boundaries_coarse it is also outside
+// no-fail zones and the families of loaded and driven nodes.
 #include <cstdint>
 #include <vector>
 
@@ -21,6 +22,14 @@ std::vector<char> refinable_nodes(const Model& m, const AdaptSpec& spec);
 // how the refined zone keeps ahead of a travelling wave or a running crack.
 std::vector<std::uint32_t> energy_trigger(const Model& m, const std::vector<double>& W,
                                           double alpha, const std::vector<char>& refinable);
+
+// Stretch trigger: nodes (refinable or already refined, not no-fail) with an intact breakable
+// bond stretched to at least beta times the critical stretch the node's descendants will have on
+// the finest level. Measured against the bond law's own failure point, it fires where bonds are
+// on their way to breaking, not where the load happens to be largest (as W >= alpha W_max does
+// while a load ramps up), and it refines ahead of a crack before any bond breaks coarse.
+std::vector<std::uint32_t> stretch_trigger(const Model& m, const AdaptSpec& spec, double beta,
+                                           const std::vector<char>& refinable);
 
 // Damage trigger: of the nodes whose damage grew (`damaged`), those refinable or already refined.
 std::vector<std::uint32_t> damage_trigger(const Model& m, const std::vector<std::uint32_t>& damaged,

@@ -453,7 +453,6 @@ Deck parse_deck(const std::string& text, const std::string& name) {
     } else if (a->has("m_per_level")) {
       a->fail("m_per_level", "only used with scaling: delta_m");
     }
-    ad.interface_horizon = a->boolean("interface_horizon", false);
     ad.start_time = a->number("start_time", 0.0, non_negative());
     ad.check_every = static_cast<int>(a->integer("check_every", 1, [](long v) {
       return v >= 1 ? std::string() : std::string("must be >= 1");
@@ -463,7 +462,27 @@ Deck parse_deck(const std::string& text, const std::string& name) {
         return (v > 0 && v <= 1) ? std::string()
                                  : std::string("a fraction of the maximum energy density in (0, 1]");
       });
-    ad.damage_trigger = a->boolean("damage_trigger", false);
+    if (a->has("stretch_trigger"))
+      ad.stretch_fraction = a->number("stretch_trigger", std::nullopt, [](double v) {
+        return (v > 0 && v <= 1) ? std::string()
+                                 : std::string("a fraction of the finest level's critical stretch "
+                                               "in (0, 1]");
+      });
+    // A deck that names no trigger and no initial zone gets the triggers that need no tuning:
+    // bonds at half the finest level's critical stretch, and damage growth on a coarse node.
+    const bool defaults = !ad.energy_fraction && !ad.stretch_fraction &&
+                          !a->has("damage_trigger") && ad.initial.empty() &&
+                          dk.solver == Deck::SolverType::Explicit;
+    if (defaults) ad.stretch_fraction = kDefaultStretchTrigger;
+    ad.damage_trigger = a->boolean("damage_trigger", defaults);
+    // With the automatic triggers the zone follows the stretch field closely, and its interfaces
+    // come near stressed free surfaces: without the correction a crack starts where an interface
+    // meets a hole instead of at the hole's stress peak.
+    ad.interface_horizon = a->boolean("interface_horizon", defaults);
+    // No-fail nodes cannot crack, and a fine zone bonded to a loaded or driven coarse row
+    // softens it. The thesis' triggers (Algorithm A.1) refine them like any other node, and
+    // its decks keep that.
+    ad.keep_boundaries_coarse = !a->boolean("refine_near_boundaries", !defaults);
     ad.total_energy = a->choice("energy", {"strain", "total"}, "strain") == "total";
     ad.coarsen = a->boolean("coarsen", false);
     ad.conserve_energy = a->boolean("conserve_energy", false);
@@ -476,10 +495,11 @@ Deck parse_deck(const std::string& text, const std::string& name) {
     ad.visibility_factor = a->number("visibility_factor", 1.0, [](double v) {
       return (v >= 1.0 && v <= 20.0) ? std::string() : std::string("must be in [1, 20] horizons");
     });
-    ad.enabled = ad.energy_fraction || ad.damage_trigger;
+    ad.enabled = ad.energy_fraction || ad.stretch_fraction || ad.damage_trigger;
     if (!ad.enabled && ad.initial.empty())
-      a->fail("", "give at least one trigger (energy_trigger: fraction of W_max, damage_trigger: "
-                  "true) or an initial_refinement zone");
+      a->fail("", "give at least one trigger (stretch_trigger: fraction of the critical stretch, "
+                  "energy_trigger: fraction of W_max, damage_trigger: true) or an "
+                  "initial_refinement zone");
     if (ad.enabled && dk.solver != Deck::SolverType::Explicit)
       a->fail("", "refinement triggers work with the explicit solver only; static and relaxation "
                   "runs take initial_refinement zones");
