@@ -199,9 +199,11 @@ TEST(Lps, GaussianPulseThroughARefinedHalfKeepsItsEnergyBounded) {
   // coarse families reach fine nodes whose horizons do not reach back, and j's force state may
   // act on such a bond only where i is in j's family: otherwise those bonds act on one end only
   // and feed energy in without bound (we measured K + U growing 192-fold over the crossing).
-  // The plain (source-horizon) pairing keeps unbalanced forces at the interface and changes the
-  // energy by 14% here: it must stay within 20%. The dual-horizon pairing, the gradient of the
-  // total strain energy, keeps it as well as the uniform plate does (0.5%).
+  // Over the mutual bonds the plain pairing's pair forces are equal and opposite up to the two
+  // ends' quadrature factors: it changes the energy by 2.9% here (with one-sided bonds 14%), the
+  // level of the plain PMB form in the thesis' wave through levels (2%); it must stay within
+  // 5%. The dual-horizon pairing, the gradient of the total strain energy, keeps it as well as
+  // the uniform plate does (0.5%).
   auto deck = [](const std::string& pairing) {
     return "model: {dimension: 2, plane: strain, formulation: lps}\n"
            "material: {youngs_modulus: 1.0, density: 1.0, poisson_ratio: 0.2}\n"
@@ -216,7 +218,7 @@ TEST(Lps, GaussianPulseThroughARefinedHalfKeepsItsEnergyBounded) {
   const test::EnergyRun dual = test::run_energy_history(deck("dual_horizon"), 10);
   ASSERT_TRUE(plain.ok && dual.ok);
   EXPECT_GT(plain.max_kinetic, 0.3 * plain.e0);
-  EXPECT_LT(plain.worst_drift, 0.2);
+  EXPECT_LT(plain.worst_drift, 0.05);
   EXPECT_LT(dual.worst_drift, 0.005);
   RecordProperty("energy_drift_plain", std::to_string(plain.worst_drift));
   RecordProperty("energy_drift_dual", std::to_string(dual.worst_drift));

@@ -34,40 +34,50 @@ inline double omega(double t) {
 
 // Pass 1: weighted volume (all bonds) and dilatation (intact bonds) of every active node, and
 // the packed per-node factors of the force pass. Branch-free inner loop (vectorizes).
-template <int D, InfluenceShape S>
+template <int D, InfluenceShape S, bool Mutual>
 void dilatation(const NodeSet& ns, const BondFamilies& bf, const LpsConstants& c, LpsScratch& sc) {
   const std::size_t n = ns.size();
   sc.m.assign(n, 0.0);
   sc.theta.assign(n, 0.0);
   sc.packed.assign(4 * n, 0.0);
-  sc.reach.assign(n, 0.0);
-  const double* yp = ns.cur.data();
+  sc.reach.assign(n, INFINITY);
   const std::uint32_t* nbr = bf.neighbor.data();
   const double* inv_len = bf.inv_length.data();
   const float* beta = bf.beta.data();
+  // Each family's longest bond first: the next loop keeps only bonds whose far end's family
+  // holds the near end too (every bond without Mutual: the dual-horizon form's states).
+#pragma omp parallel for schedule(dynamic, 512) if (Mutual)
+  for (std::size_t i = 0; i < (Mutual ? n : 0); ++i) {
+    if (!(ns.flags[i] & kActive)) continue;
+    double shortest_inv = INFINITY;
+#pragma omp simd reduction(min : shortest_inv)
+    for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k)
+      shortest_inv = std::min(shortest_inv, std::abs(inv_len[k]));
+    sc.reach[i] = 1.0 / shortest_inv;
+  }
+  const double* reach = sc.reach.data();
+  const double* yp = ns.cur.data();
 #pragma omp parallel for schedule(dynamic, 512)
   for (std::size_t i = 0; i < n; ++i) {
     if (!(ns.flags[i] & kActive)) continue;
     const double inv_delta = 1.0 / ns.horizon[i];
     const double yi0 = yp[4 * i], yi1 = D > 1 ? yp[4 * i + 1] : 0.0, yi2 = D > 2 ? yp[4 * i + 2] : 0.0;
-    double m = 0, th = 0, reach = 0;
-#pragma omp simd reduction(+ : m, th) reduction(max : reach)
+    double m = 0, th = 0;
+#pragma omp simd reduction(+ : m, th)
     for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {
       const std::size_t j = 4 * static_cast<std::size_t>(nbr[k]);
       const double d0 = yp[j] - yi0, d1 = D > 1 ? yp[j + 1] - yi1 : 0.0, d2 = D > 2 ? yp[j + 2] - yi2 : 0.0;
       const double x = 1.0 / std::abs(inv_len[k]);
       const double bb = beta[k];
       const double ab = std::abs(bb), bp = 0.5 * (bb + ab);
-      double wv = yp[j + 3];
+      double wv = yp[j + 3] * static_cast<double>(x <= reach[nbr[k]]);
       if constexpr (S != InfluenceShape::Constant) wv *= omega<S>(x * inv_delta);
       m += wv * ab * x * x;
-      reach = std::max(reach, x);
       th += wv * bp * x * (std::sqrt(d0 * d0 + d1 * d1 + d2 * d2) - x);
     }
     const double theta = m > 0 ? c.D * th / m : 0.0;
     sc.m[i] = m;
     sc.theta[i] = theta;
-    sc.reach[i] = reach;
     double* p = &sc.packed[4 * i];
     p[0] = m > 0 ? c.D * c.kappa * theta / m : 0.0;
     p[1] = m > 0 ? c.alpha * c.mu / m : 0.0;
@@ -79,7 +89,7 @@ void dilatation(const NodeSet& ns, const BondFamilies& bf, const LpsConstants& c
 template <int D, InfluenceShape S, bool E>
 std::size_t forces(NodeSet& ns, BondFamilies& bf, const LpsConstants& c, bool allow_breaking,
                    LpsScratch& sc, std::vector<std::uint64_t>* log, double* W, const PdroSpec* pdro) {
-  dilatation<D, S>(ns, bf, c, sc);
+  dilatation<D, S, true>(ns, bf, c, sc);
   const std::size_t n = ns.size();
   const double* yp = ns.cur.data();
   const double* pk = sc.packed.data();
@@ -107,9 +117,10 @@ std::size_t forces(NodeSet& ns, BondFamilies& bf, const LpsConstants& c, bool al
       const double bb = beta[k];
       const double bp = 0.5 * (bb + std::abs(bb));
       const double e = r - x;
-      double wi = 1.0, wj = static_cast<double>(x <= reach[nbr[k]]);
+      const double mutual = static_cast<double>(x <= reach[nbr[k]]);
+      double wi = mutual, wj = mutual;
       if constexpr (S != InfluenceShape::Constant) {
-        wi = omega<S>(x * idi);
+        wi *= omega<S>(x * idi);
         wj *= omega<S>(x * pk[j + 3]);
       }
       const double edi = e - Ci * x;
@@ -146,9 +157,10 @@ std::size_t forces(NodeSet& ns, BondFamilies& bf, const LpsConstants& c, bool al
           }
           continue;
         }
-        double wi = 1.0, wj = static_cast<double>(x <= reach[nbr[k]]);
+        const double mutual = static_cast<double>(x <= reach[nbr[k]]);
+        double wi = mutual, wj = mutual;
         if constexpr (S != InfluenceShape::Constant) {
-          wi = omega<S>(x * idi);
+          wi *= omega<S>(x * idi);
           wj *= omega<S>(x * pk[j + 3]);
         }
         const double edi = e - Ci * x;
@@ -209,7 +221,7 @@ std::size_t lps_forces(NodeSet& ns, BondFamilies& bf, InfluenceShape shape, cons
 
 namespace {
 
-template <int D, InfluenceShape S>
+template <int D, InfluenceShape S, bool Mutual>
 void energy(const NodeSet& ns, const BondFamilies& bf, const LpsConstants& c,
             const LpsScratch& sc, std::vector<double>& W) {
   const std::size_t n = ns.size();
@@ -228,7 +240,8 @@ void energy(const NodeSet& ns, const BondFamilies& bf, const LpsConstants& c,
       double r2 = 0;
       for (int d = 0; d < D; ++d) r2 += std::pow(yp[j + d] - yp[4 * i + d], 2);
       const double ed = std::sqrt(r2) - x - Ci * x;
-      wdev += omega<S>(x * idi) * ed * ed * yp[j + 3] * static_cast<double>(b);
+      if (!Mutual || x <= sc.reach[bf.neighbor[k]])
+        wdev += omega<S>(x * idi) * ed * ed * yp[j + 3] * static_cast<double>(b);
     }
     W[i] = 0.5 * c.kappa * sc.theta[i] * sc.theta[i] + 0.5 * sc.packed[4 * i + 1] * wdev;
   }
@@ -247,31 +260,45 @@ void by_dim_shape(int dim, InfluenceShape s, A&&... a) {
   else go.template operator()<2>();
 }
 
-template <int D, InfluenceShape S>
+template <bool Mutual>
 struct DilatationOp {
-  static void run(const NodeSet& ns, const BondFamilies& bf, const LpsConstants& c, LpsScratch& sc) {
-    dilatation<D, S>(ns, bf, c, sc);
-  }
+  template <int D, InfluenceShape S>
+  struct Op {
+    static void run(const NodeSet& ns, const BondFamilies& bf, const LpsConstants& c,
+                    LpsScratch& sc) {
+      dilatation<D, S, Mutual>(ns, bf, c, sc);
+    }
+  };
 };
-template <int D, InfluenceShape S>
+template <bool Mutual>
 struct EnergyOp {
-  static void run(const NodeSet& ns, const BondFamilies& bf, const LpsConstants& c,
-                  LpsScratch& sc, std::vector<double>& W) {
-    energy<D, S>(ns, bf, c, sc, W);
-  }
+  template <int D, InfluenceShape S>
+  struct Op {
+    static void run(const NodeSet& ns, const BondFamilies& bf, const LpsConstants& c,
+                    LpsScratch& sc, std::vector<double>& W) {
+      energy<D, S, Mutual>(ns, bf, c, sc, W);
+    }
+  };
 };
 
 }  // namespace
 
 void lps_dilatation(const NodeSet& ns, const BondFamilies& bf, InfluenceShape shape,
-                    const LpsConstants& c, LpsScratch& sc) {
-  by_dim_shape<DilatationOp>(ns.dim, shape, ns, bf, c, sc);
+                    const LpsConstants& c, LpsScratch& sc, bool mutual_only) {
+  if (mutual_only)
+    by_dim_shape<DilatationOp<true>::Op>(ns.dim, shape, ns, bf, c, sc);
+  else
+    by_dim_shape<DilatationOp<false>::Op>(ns.dim, shape, ns, bf, c, sc);
 }
 
 void lps_energy_density(const NodeSet& ns, const BondFamilies& bf, InfluenceShape shape,
-                        const LpsConstants& c, LpsScratch& sc, std::vector<double>& W) {
-  lps_dilatation(ns, bf, shape, c, sc);
-  by_dim_shape<EnergyOp>(ns.dim, shape, ns, bf, c, sc, W);
+                        const LpsConstants& c, LpsScratch& sc, std::vector<double>& W,
+                        bool mutual_only) {
+  lps_dilatation(ns, bf, shape, c, sc, mutual_only);
+  if (mutual_only)
+    by_dim_shape<EnergyOp<true>::Op>(ns.dim, shape, ns, bf, c, sc, W);
+  else
+    by_dim_shape<EnergyOp<false>::Op>(ns.dim, shape, ns, bf, c, sc, W);
 }
 
 }  // namespace periadapt

@@ -4,9 +4,14 @@
 //   m_i     = sum_j w x^2 beta V_j                                 (weighted volume, Eq. 2.9)
 //   theta_i = (D / m_i) sum_j w x e beta V_j,  e = |Y| - x           (dilatation, D = 2 or 3)
 //   t_ij    = (D kappa theta_i / m_i) w x + (alpha / m_i) w (e - theta_i x / D)
-//   f_i     = sum_j (t_ij + t_ji) beta V_j Y/|Y|, t_ji only where i is in j's family (on a
-//             refined grid a coarse node's family reaches fine nodes whose horizons do not reach
-//             back; a t_ji there would act on i alone, with no reaction, and feeds energy in)
+//   f_i     = sum_j (t_ij + t_ji) beta V_j Y/|Y|
+// with every sum over the bonds whose far end's family holds the near end too. On a uniform grid
+// that is every bond. On a refined one a coarse family reaches fine nodes whose horizons do not
+// reach back: such a bond would act on one end only (t_ij with no reaction on j, or a t_ji of a
+// state that does not contain the bond) and feed energy in without bound. Over the mutual bonds
+// the pair force appears in both rows, so momentum is conserved and the forces are the gradient
+// of sum V_i W_i; LPS normalizes each state by its weighted volume, so a coarse node that loses
+// a few far bonds keeps the calibrated response.
 // with 3D: kappa = K, alpha = 15 mu; 2D: kappa = the in-plane bulk modulus (plane strain
 // E / (2 (1 + nu)(1 - 2 nu)), plane stress E / (2 (1 - nu))), alpha = 8 mu. With this 2D
 // dilatation the deviatoric part is orthogonal to x, so the force state needs no extra term (the
@@ -41,7 +46,7 @@ double lps_critical_stretch(int dim, const LpsConstants& c, double delta, double
 struct LpsScratch {
   std::vector<double> m, theta;
   // Longest bond of each family: node i lies in j's family exactly when |xi_ij| <= reach_j (a
-  // family holds every node within its search radius), so j's state acts on the bond only then.
+  // family holds every node within its search radius).
   std::vector<double> reach;
   // Packed per node for the force pass: [D kappa theta / m, alpha mu / m, theta / D, 1/delta].
   std::vector<double> packed;
@@ -55,11 +60,14 @@ std::size_t lps_forces(NodeSet& nodes, BondFamilies& bonds, InfluenceShape shape
                        const PdroSpec* pdro = nullptr);
 
 // Weighted volume and dilatation of every active node into `scratch` (the first pass).
+// `mutual_only`: over the mutual bonds, as the plain kernel's states (above); false: over whole
+// families (the dual-horizon form).
 void lps_dilatation(const NodeSet& nodes, const BondFamilies& bonds, InfluenceShape shape,
-                    const LpsConstants& c, LpsScratch& scratch);
+                    const LpsConstants& c, LpsScratch& scratch, bool mutual_only);
 
 // Strain-energy density W_i = kappa theta^2 / 2 + (alpha mu / (2 m)) sum w (e^d)^2 beta V.
 void lps_energy_density(const NodeSet& nodes, const BondFamilies& bonds, InfluenceShape shape,
-                        const LpsConstants& c, LpsScratch& scratch, std::vector<double>& W);
+                        const LpsConstants& c, LpsScratch& scratch, std::vector<double>& W,
+                        bool mutual_only);
 
 }  // namespace periadapt

@@ -33,7 +33,7 @@ std::size_t internal_forces_rows(Model& m, bool allow_breaking, const std::vecto
 void energy_density(const Model& m, std::vector<double>& W) {
   if (m.material.lps)
     lps_energy_density(m.nodes, m.bonds, m.material.shape, m.material.lps_constants,
-                       m.lps_scratch, W);
+                       m.lps_scratch, W, !m.dual_horizon);
   else
     pmb_energy_density(m.nodes, m.bonds, m.material.shape, W, m.material.thermal_strain);
 }
