@@ -126,20 +126,17 @@ TEST(DeckErrors, StretchTriggerIsAFractionOfTheCriticalStretch) {
 }
 
 TEST(DeckErrors, AdaptWithoutTriggersTakesTheDocumentedDefaults) {
-  // adapt: {max_level: N} alone: stretch trigger at 0.5, damage trigger, interface horizons,
-  // boundaries kept coarse. Naming any trigger switches to the thesis' explicit form.
+  // adapt: {max_level: N} alone: stretch trigger at 0.5, damage trigger, interface horizons. Naming any trigger switches to the thesis' explicit form.
   const Deck d = parse_deck(std::string(kGood) + "adapt: {max_level: 1}\n", "good.yaml");
   ASSERT_TRUE(d.adapt.enabled);
   ASSERT_TRUE(d.adapt.stretch_fraction.has_value());
   EXPECT_EQ(*d.adapt.stretch_fraction, kDefaultStretchTrigger);
   EXPECT_TRUE(d.adapt.damage_trigger);
   EXPECT_TRUE(d.adapt.interface_horizon);
-  EXPECT_TRUE(d.adapt.keep_boundaries_coarse);
   EXPECT_FALSE(d.adapt.energy_fraction.has_value());
   const Deck e = parse_deck(std::string(kGood) + "adapt: {max_level: 1, energy_trigger: 0.5}\n",
                             "good.yaml");
   EXPECT_FALSE(e.adapt.stretch_fraction.has_value());
   EXPECT_FALSE(e.adapt.damage_trigger);
   EXPECT_FALSE(e.adapt.interface_horizon);
-  EXPECT_FALSE(e.adapt.keep_boundaries_coarse);
 }

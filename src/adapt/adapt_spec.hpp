@@ -54,8 +54,9 @@ struct AdaptSpec {
   bool coarsen = false;                   // return quiet refined zones to their parents
   double visibility_factor = 1.0;         // visibility radius in horizons of the flagged node
   bool conserve_energy = false;           // rescale rebuilt rows' velocities so events keep K + U
-  // no-fail nodes (they cannot crack) and the families of loaded and driven nodes stay coarse
-  bool keep_boundaries_coarse = false;
+  // Loaded nodes are refined with the nodes bonded to them, their children carrying the load
+  // (method B; off: loaded nodes are never refined, thesis MSc 2.1).
+  bool refine_loads = false;
 };
 
 }  // namespace periadapt

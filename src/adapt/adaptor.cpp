@@ -71,8 +71,11 @@ void Adaptor::restore_energy(double h_before, const std::vector<std::uint32_t>& 
 std::vector<std::uint32_t> Adaptor::parents_for(const std::vector<std::uint32_t>& ids,
                                                 const std::vector<char>* refinable) const {
   if (ids.empty()) return {};
-  if (refinable) return apply_visibility(m_, ids, *refinable, spec_.visibility_factor);
-  return apply_visibility(m_, ids, refinable_nodes(m_, spec_), spec_.visibility_factor);
+  std::vector<char> own;
+  if (!refinable) own = refinable_nodes(m_, spec_), refinable = &own;
+  std::vector<std::uint32_t> parents = apply_visibility(m_, ids, *refinable, spec_.visibility_factor);
+  if (spec_.refine_loads) add_loaded_neighbours(m_, *refinable, parents);
+  return parents;
 }
 
 const std::vector<char>& Adaptor::refinable() {
@@ -95,7 +98,7 @@ void Adaptor::refine(const std::vector<std::uint32_t>& parents, std::size_t iden
   vv_.synchronize_velocities();
   const double h0 = spec_.conserve_energy ? total_energy() : 0.0;
   refinable_valid_ = false;
-  ev.stats = refine_nodes(m_, parents, spec_);
+  ev.stats = refine_nodes(m_, parents, spec_, spec_.refine_loads);
   if (spec_.conserve_energy) restore_energy(h0, ev.stats.rebuilt);
   std::size_t active = 0;
   for (auto f : m_.nodes.flags) active += (f & kActive) != 0;

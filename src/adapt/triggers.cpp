@@ -15,28 +15,37 @@ std::vector<char> refinable_nodes(const Model& m, const AdaptSpec& spec) {
   for (std::size_t i = 0; i < ns.size(); ++i) {
     if (!(ns.flags[i] & kActive) || (ns.flags[i] & kBoundary) || ns.level[i] >= spec.max_level)
       continue;
-    if (spec.keep_boundaries_coarse && (ns.flags[i] & kNoFail)) continue;
     if (spec.region &&
         !spec.region->contains({ns.x[0][i], ns.x[1][i], ns.x[2][i]}, 1e-9 * ns.spacing[i]))
       continue;
     r[i] = 1;
   }
-  for (const BodyLoad& l : m.loads)
-    for (std::uint32_t i : l.nodes) r[i] = 0;
-  if (spec.keep_boundaries_coarse) {
-    // A refined node bonded to a loaded or driven coarse one pulls on it with its own, larger
-    // micromodulus and gets only the coarse one's back (source-horizon pairing): a fine zone
-    // reaching a loaded row makes that row 35% softer (tests/test_agrs_invisible.cpp). So the
-    // families of loaded and driven nodes stay coarse.
-    auto keep = [&](std::uint32_t i) {
-      for (std::uint64_t k = m.bonds.begin(i); k < m.bonds.end(i); ++k) r[m.bonds.neighbor[k]] = 0;
-    };
+  if (!spec.refine_loads)
     for (const BodyLoad& l : m.loads)
-      for (std::uint32_t i : l.nodes) keep(i);
-    for (const PrescribedMotion& pm : m.motions)
-      for (std::uint32_t i : pm.nodes) keep(i);
-  }
+      for (std::uint32_t i : l.nodes) r[i] = 0;
   return r;
+}
+
+void add_loaded_neighbours(const Model& m, const std::vector<char>& refinable,
+                           std::vector<std::uint32_t>& parents) {
+  if (parents.empty() || m.loads.empty()) return;
+  const NodeSet& ns = m.nodes;
+  std::vector<char> mark(ns.size(), 0);
+  for (std::uint32_t p : parents) mark[p] = 1;
+  const std::size_t before = parents.size();
+  for (const BodyLoad& l : m.loads)
+    for (std::uint32_t i : l.nodes) {
+      if (mark[i] || !refinable[i]) continue;
+      for (std::uint64_t k = m.bonds.begin(i); k < m.bonds.end(i); ++k) {
+        const std::uint32_t j = m.bonds.neighbor[k];
+        if (mark[j] == 1 && ns.level[j] >= ns.level[i]) {
+          mark[i] = 2;
+          parents.push_back(i);
+          break;
+        }
+      }
+    }
+  if (parents.size() > before) std::sort(parents.begin(), parents.end());
 }
 
 std::vector<std::uint32_t> energy_trigger(const Model& m, const std::vector<double>& W,

@@ -2,8 +2,7 @@
 // Refinement triggers (thesis Algorithms A.1, A.2) and the visibility criterion (Bobaru et al.
 // 2009, 5.1; thesis Fig. 3.6). A node can be refined when it is active, below the maximum level,
 // inside the allowed region and carries no load or prescribed motion (thesis, MSc 2.1: nodes with
-// boundary conditions are never refined); with spec.keep_boundaries_coarse it is also outside
-// no-fail zones and the families of loaded and driven nodes.
+// boundary conditions are never refined).
 #include <cstdint>
 #include <vector>
 
@@ -23,9 +22,12 @@ std::vector<char> refinable_nodes(const Model& m, const AdaptSpec& spec);
 std::vector<std::uint32_t> energy_trigger(const Model& m, const std::vector<double>& W,
                                           double alpha, const std::vector<char>& refinable);
 
-// Stretch trigger: nodes (refinable or already refined, not no-fail) with an intact breakable
-// bond stretched to at least beta times the critical stretch the node's descendants will have on
-// the finest level. Measured against the bond law's own failure point, it fires where bonds are
+// Stretch trigger: refinable nodes with an intact breakable bond stretched to at least beta
+// times the critical stretch their children will have. No-fail nodes have no breakable bond, so
+// they never ask for refinement themselves; they join a zone only through the visibility
+// criterion, where a crack-prone zone within a horizon would otherwise end at them (an interface
+// there breaks the fine side's bonds: the suite's double-edge-notched plate cracked along its
+// no-fail strips when they were kept coarse). Measured against the bond law's own failure point, it fires where bonds are
 // on their way to breaking, not where the load happens to be largest (as W >= alpha W_max does
 // while a load ramps up), and it refines ahead of a crack before any bond breaks coarse.
 std::vector<std::uint32_t> stretch_trigger(const Model& m, const AdaptSpec& spec, double beta,
@@ -34,6 +36,13 @@ std::vector<std::uint32_t> stretch_trigger(const Model& m, const AdaptSpec& spec
 // Damage trigger: of the nodes whose damage grew (`damaged`), those refinable or already refined.
 std::vector<std::uint32_t> damage_trigger(const Model& m, const std::vector<std::uint32_t>& damaged,
                                           const std::vector<char>& refinable);
+
+// With spec.refine_loads: a loaded node bonded to a parent of the same or a coarser level joins
+// the parents. A fine zone bonded to a coarse loaded row pulls on it with its own, larger
+// micromodulus and gets only the coarse one's back (source-horizon pairing): the row then gives
+// way 35% more than on the fine grid (tests/test_agrs_invisible.cpp).
+void add_loaded_neighbours(const Model& m, const std::vector<char>& refinable,
+                           std::vector<std::uint32_t>& parents);
 
 // Visibility: the refinable identified nodes and every refinable node j at the same or a coarser
 // level within radius_factor max(delta_i, delta_j) of an identified node i (no coarse node sees

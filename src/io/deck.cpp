@@ -479,10 +479,10 @@ Deck parse_deck(const std::string& text, const std::string& name) {
     // come near stressed free surfaces: without the correction a crack starts where an interface
     // meets a hole instead of at the hole's stress peak.
     ad.interface_horizon = a->boolean("interface_horizon", defaults);
-    // No-fail nodes cannot crack, and a fine zone bonded to a loaded or driven coarse row
-    // softens it. The thesis' triggers (Algorithm A.1) refine them like any other node, and
-    // its decks keep that.
-    ad.keep_boundaries_coarse = !a->boolean("refine_near_boundaries", !defaults);
+    ad.refine_loads = a->boolean("refine_loads", defaults && ad.method == NodeGeneration::B);
+    if (ad.refine_loads && ad.method == NodeGeneration::A)
+      a->fail("refine_loads", "method a shrinks the loaded parents' cells without handing the "
+                              "lost load to the new nodes; use method b");
     ad.total_energy = a->choice("energy", {"strain", "total"}, "strain") == "total";
     ad.coarsen = a->boolean("coarsen", false);
     ad.conserve_energy = a->boolean("conserve_energy", false);
