@@ -230,3 +230,29 @@ TEST(AgrsInvisible, TheTimeStepAccountsForTheFinestLevelBeforeTheRun) {
     EXPECT_THROW(choose_time_step(test::deck_from(too_long), m), DeckError);
   }
 }
+
+TEST(AgrsInvisible, TheStretchTheForcePassTracksFlagsTheNodesASweepFlags) {
+  // Plain PMB: the stretch trigger reads each row's largest breakable stretch from the force pass
+  // instead of a sweep of its own. Under a load that flags some nodes and not others, both must
+  // flag the same nodes, for several thresholds.
+  const Deck dk = test::deck_from(plate(1e-3, 4e6));
+  Model m = build_model(dk);
+  AdaptSpec spec;
+  spec.enabled = true;
+  spec.max_level = 1;
+  m.track_breakable_stretch = true;
+  VelocityVerlet vv(m, 4e-8);
+  vv.initialize();
+  for (int s = 0; s < 250; ++s) ASSERT_TRUE(vv.step());
+  ASSERT_EQ(m.breakable_stretch.size(), m.nodes.size());
+  const std::vector<char> ok = refinable_nodes(m, spec);
+  for (double beta : {0.2, 0.25, 0.3}) {
+    m.track_breakable_stretch = true;
+    const auto tracked = stretch_trigger(m, spec, beta, ok);
+    m.track_breakable_stretch = false;
+    const auto swept = stretch_trigger(m, spec, beta, ok);
+    EXPECT_EQ(tracked, swept) << "beta " << beta;
+    EXPECT_GT(swept.size(), 0u) << "beta " << beta;
+    EXPECT_LT(swept.size(), m.nodes.size()) << "beta " << beta;
+  }
+}

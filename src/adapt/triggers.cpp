@@ -72,6 +72,8 @@ std::vector<std::uint32_t> stretch_trigger(const Model& m, const AdaptSpec& spec
   const double eth = m.material.thermal_strain;
   const std::size_t n = ns.size();
   std::vector<char> hot(n, 0);
+  // The force passes measured it already (row-local PMB): their latest value per row.
+  const bool tracked = m.track_breakable_stretch && m.breakable_stretch.size() == n;
 #pragma omp parallel for schedule(guided, 64)
   for (std::size_t i = 0; i < n; ++i) {
     if (!refinable[i]) continue;
@@ -79,17 +81,28 @@ std::vector<std::uint32_t> stretch_trigger(const Model& m, const AdaptSpec& spec
     // of this node's children.
     const double limit = beta * ns.critical_stretch[i] *
                          std::sqrt(ns.horizon[i] / level_horizon(m, spec, ns.level[i] + 1));
-    const double yi[3] = {ns.cur[4 * i], ns.cur[4 * i + 1], ns.cur[4 * i + 2]};
-    for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {
-      if (!BondFamilies::intact(bf.beta[k]) || !bf.breakable(k)) continue;
-      const std::size_t j = 4 * static_cast<std::size_t>(bf.neighbor[k]);
-      double r2 = 0;
-      for (int d = 0; d < ns.dim; ++d) r2 += (ns.cur[j + d] - yi[d]) * (ns.cur[j + d] - yi[d]);
-      if (std::sqrt(r2) * bf.inv_length[k] - 1.0 - eth >= limit) {
-        hot[i] = 1;
-        break;
-      }
+    if (tracked) {
+      hot[i] = m.breakable_stretch[i] >= limit;
+      continue;
     }
+    const double* yp = ns.cur.data();
+    const double yi0 = yp[4 * i], yi1 = yp[4 * i + 1], yi2 = yp[4 * i + 2];
+    const std::uint32_t* nbr = bf.neighbor.data();
+    const double* inv_len = bf.inv_length.data();
+    const float* bt = bf.beta.data();
+    // (|y| / |xi|)^2 of the intact breakable bonds, largest of the row (branch-free so that it
+    // vectorizes: broken bonds have beta < 0, unbreakable ones 1/|xi| < 0).
+    double q = 0;
+#pragma omp simd reduction(max : q)
+    for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {
+      const std::size_t j = 4 * static_cast<std::size_t>(nbr[k]);
+      const double d0 = yp[j] - yi0, d1 = yp[j + 1] - yi1, d2 = yp[j + 2] - yi2;
+      const double il = inv_len[k];
+      const double v = (d0 * d0 + d1 * d1 + d2 * d2) * il * il;
+      q = std::max(q, (bt[k] > 0.0f && il > 0.0) ? v : 0.0);
+    }
+    const double s = 1.0 + eth + limit;
+    hot[i] = q >= s * s;
   }
   std::vector<std::uint32_t> out;
   for (std::size_t i = 0; i < n; ++i)

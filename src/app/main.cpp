@@ -122,6 +122,22 @@ int check(const std::string& path) {
       fmt::print("  level {}       spacing {:.6g} m, horizon {:.6g} m\n", l,
                  m.grid_spacing / std::ldexp(1.0, l), level_horizon(m, a, l));
   }
+  if (dk.adapt.enabled || !dk.adapt.initial.empty()) {
+    // What the initial zones refined already (model built with them): nodes and body volume.
+    std::size_t active = 0, refined = 0;
+    double vol = 0, vol_refined = 0;
+    for (std::size_t i = 0; i < m.nodes.size(); ++i) {
+      if (!(m.nodes.flags[i] & kActive)) continue;
+      ++active;
+      vol += m.nodes.volume[i];
+      if (m.nodes.level[i] > 0) ++refined, vol_refined += m.nodes.volume[i];
+    }
+    fmt::print("initial zones   {} of {} active nodes refined, {:.1f}% of the body's volume\n",
+               refined, active, vol > 0 ? 100.0 * vol_refined / vol : 0.0);
+    if (vol > 0 && vol_refined > 0.5 * vol)
+      fmt::print("warning         the initial zones refine more than half of the body: a uniform "
+                 "grid of the finer spacing may cost less\n");
+  }
   fmt::print("output          {}\n", dk.output.directory);
   return 0;
 }

@@ -15,7 +15,7 @@ inline double g(double t) {
 }
 
 struct RowSums {
-  double a0, a1, a2, smax, w;
+  double a0, a1, a2, smax, w, sbreak;
 };
 
 // Forces of the intact bonds of one row and their largest stretch; nothing is written per bond.
@@ -27,12 +27,13 @@ struct RowSums {
 // energies are asked for. The extra reduction leaves the force sums as they vectorize without it:
 // the forces come out bit for bit the same (tests/test_energy_density.cpp), so they do not
 // depend on when energies are asked for.
-template <int D, InfluenceShape S, bool E = false>
+// T: also the largest stretch of the intact breakable bonds (the stretch trigger's measure).
+template <int D, InfluenceShape S, bool E = false, bool T = false>
 inline RowSums row_force_sums(const double* yp, const std::uint32_t* nbr, const double* inv_len,
                               const float* beta, std::uint64_t kb, std::uint64_t ke, double yi0,
                               double yi1, double yi2, double ci, double delta, double one_eth) {
-  double a0 = 0, a1 = 0, a2 = 0, smax = -INFINITY, w = 0;
-#pragma omp simd reduction(+ : a0, a1, a2, w) reduction(max : smax)
+  double a0 = 0, a1 = 0, a2 = 0, smax = -INFINITY, w = 0, sbreak = -INFINITY;
+#pragma omp simd reduction(+ : a0, a1, a2, w) reduction(max : smax, sbreak)
   for (std::uint64_t k = kb; k < ke; ++k) {
     // 64-bit index arithmetic: a 32-bit 4*j would have to wrap and defeats the gathers.
     const std::size_t j = 4 * static_cast<std::size_t>(nbr[k]);
@@ -49,6 +50,10 @@ inline RowSums row_force_sums(const double* yp, const std::uint32_t* nbr, const 
     if constexpr (S != InfluenceShape::Constant) gw *= g<S>(1.0 / (ail * delta));
     const double s = r * ail - one_eth;
     smax = std::max(smax, bp > 0.0 ? s : -INFINITY);
+    if constexpr (T) {
+      const double bk = inv_len[k] > 0.0 ? bp : 0.0;
+      sbreak = std::max(sbreak, bk > 0.0 ? s : -INFINITY);
+    }
     // One division serves the force and the energy: t = 1/(r ail) = |xi|/r, so s/r = s ail t and
     // |xi| = r t (a second division for |xi| made the energy sweep 29% dearer than the plain one).
     const double t = 1.0 / (r * ail);
@@ -59,7 +64,7 @@ inline RowSums row_force_sums(const double* yp, const std::uint32_t* nbr, const 
     a2 += fr * d2;
     if constexpr (E) w += gw * s * s * (r * t);
   }
-  return RowSums{a0, a1, a2, smax, w};
+  return RowSums{a0, a1, a2, smax, w, sbreak};
 }
 
 // sum over the intact bonds of one row of g beta V s^2 xi (broken ones weigh 0, branch-free so
@@ -89,10 +94,11 @@ inline double row_energy_sum(const double* yp, const std::uint32_t* nbr, const d
 }
 
 // E: also the strain-energy density W_i (thesis Eq. 2.14) of the bonds intact after this call.
-template <int D, InfluenceShape S, bool E>
+// T: also the largest stretch of each row's intact breakable bonds after this call, into smax.
+template <int D, InfluenceShape S, bool E, bool T>
 std::size_t forces_kernel(NodeSet& ns, BondFamilies& bf, bool allow_breaking,
                           std::vector<std::uint64_t>* log, double* W, const PdroSpec* pdro,
-                          double eth, const std::vector<std::uint32_t>* rows) {
+                          double eth, const std::vector<std::uint32_t>* rows, double* smax_out) {
   const std::size_t n = rows ? rows->size() : ns.size();
   const std::uint32_t* row = rows ? rows->data() : nullptr;
   const double* yp = ns.cur.data();
@@ -123,9 +129,10 @@ std::size_t forces_kernel(NodeSet& ns, BondFamilies& bf, bool allow_breaking,
     const std::uint64_t kb = off[i], ke = ends[i];
     // With energies asked for, one sweep gives both.
     auto sweep = [&]() {
-      const RowSums q = row_force_sums<D, S, E>(yp, nbr, inv_len, beta, kb, ke, yi0, yi1, yi2, ci,
-                                                delta, one_eth);
+      const RowSums q = row_force_sums<D, S, E, T>(yp, nbr, inv_len, beta, kb, ke, yi0, yi1, yi2,
+                                                   ci, delta, one_eth);
       if constexpr (E) W[i] = 0.25 * ci * q.w;
+      if constexpr (T) smax_out[i] = q.sbreak;
       return q;
     };
     RowSums sums = sweep();
@@ -219,9 +226,12 @@ template <int D, InfluenceShape S>
 struct ForcesOp {
   static std::size_t run(NodeSet& ns, BondFamilies& bf, bool brk,
                          std::vector<std::uint64_t>* log, double* W, const PdroSpec* pdro,
-                         double eth, const std::vector<std::uint32_t>* rows) {
-    return W ? forces_kernel<D, S, true>(ns, bf, brk, log, W, pdro, eth, rows)
-             : forces_kernel<D, S, false>(ns, bf, brk, log, nullptr, pdro, eth, rows);
+                         double eth, const std::vector<std::uint32_t>* rows, double* smax) {
+    if (smax)
+      return W ? forces_kernel<D, S, true, true>(ns, bf, brk, log, W, pdro, eth, rows, smax)
+               : forces_kernel<D, S, false, true>(ns, bf, brk, log, nullptr, pdro, eth, rows, smax);
+    return W ? forces_kernel<D, S, true, false>(ns, bf, brk, log, W, pdro, eth, rows, nullptr)
+             : forces_kernel<D, S, false, false>(ns, bf, brk, log, nullptr, pdro, eth, rows, nullptr);
   }
 };
 template <int D, InfluenceShape S>
@@ -245,7 +255,8 @@ struct StiffnessOp {
 PmbStepStats pmb_forces(NodeSet& nodes, BondFamilies& bonds, InfluenceShape shape,
                         bool allow_breaking, std::vector<std::uint64_t>* broken_log,
                         std::vector<double>* W, const PdroSpec* pdro, double thermal_strain,
-                        const std::vector<std::uint32_t>* rows) {
+                        const std::vector<std::uint32_t>* rows,
+                        std::vector<double>* breakable_stretch) {
   PmbStepStats st;
   if (pdro && pdro->enabled && allow_breaking && pdro->interpolation == PdroInterpolation::Pim)
     pdro->visible_beta->assign(bonds.beta.begin(), bonds.beta.end());
@@ -261,9 +272,20 @@ PmbStepStats pmb_forces(NodeSet& nodes, BondFamilies& bonds, InfluenceShape shap
     W->assign(nodes.size(), 0.0);
     w = W->data();
   }
+  double* sb = nullptr;
+  if (breakable_stretch) {
+    // Rows the pass skips (inactive, or not listed) keep what they had; new nodes start at -inf.
+    breakable_stretch->resize(nodes.size(), -INFINITY);
+    sb = breakable_stretch->data();
+    const std::size_t n = rows ? rows->size() : nodes.size();
+    for (std::size_t r = 0; r < n; ++r) {
+      const std::size_t i = rows ? (*rows)[r] : r;
+      if (!(nodes.flags[i] & kActive)) sb[i] = -INFINITY;
+    }
+  }
   st.newly_broken =
       dispatch<ForcesOp>(nodes.dim, shape, nodes, bonds, allow_breaking, broken_log, w,
-                         pdro && pdro->enabled ? pdro : nullptr, thermal_strain, rows);
+                         pdro && pdro->enabled ? pdro : nullptr, thermal_strain, rows, sb);
   return st;
 }
 

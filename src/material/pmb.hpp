@@ -26,11 +26,14 @@ struct PmbStepStats {
 // `thermal_strain` = alpha dT enters every bond stretch as s - alpha dT (Stewart & Jeon Eq. 13).
 // `rows`: only these nodes' forces (and, when W is given, energy densities) are computed; the
 // others keep theirs.
+// `breakable_stretch`: also the largest stretch of each computed row's intact breakable bonds
+// (the stretch trigger's measure, from the same sweep; -inf for a row without such a bond).
 PmbStepStats pmb_forces(NodeSet& nodes, BondFamilies& bonds, InfluenceShape shape,
                         bool allow_breaking, std::vector<std::uint64_t>* broken_log = nullptr,
                         std::vector<double>* W = nullptr, const PdroSpec* pdro = nullptr,
                         double thermal_strain = 0.0,
-                        const std::vector<std::uint32_t>* rows = nullptr);
+                        const std::vector<std::uint32_t>* rows = nullptr,
+                        std::vector<double>* breakable_stretch = nullptr);
 
 // Strain-energy density W_i = 1/4 sum_j c_i g s^2 xi beta_j V_j over intact bonds (thesis 2.14).
 // `rows`: only these nodes' densities are computed; the others keep theirs.

@@ -77,6 +77,10 @@ struct Model {
   bool dual_horizon = false;  // explicit PMB in the dual-horizon form (bonds.t_* maintained)
   PdroSpec pdro;              // refinement overlay for bond failure (PMB)
   mutable LpsScratch lps_scratch;  // per-node weighted volume and dilatation (LPS)
+  // With track_breakable_stretch (the stretch trigger, row-local forces): each row's largest
+  // stretch of its intact breakable bonds, from its latest force pass.
+  bool track_breakable_stretch = false;
+  std::vector<double> breakable_stretch;
 };
 
 // Bytes per node for memory reports: the node arrays, the bond-row index and, with loads, the

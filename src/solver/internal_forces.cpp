@@ -17,7 +17,8 @@ std::size_t internal_forces(Model& m, bool allow_breaking, std::vector<std::uint
   if (m.dual_horizon)
     return pmb_dual_forces(m.nodes, m.bonds, m.material.shape, allow_breaking, log, W);
   return pmb_forces(m.nodes, m.bonds, m.material.shape, allow_breaking, log, W, &m.pdro,
-                    m.material.thermal_strain)
+                    m.material.thermal_strain, nullptr,
+                    m.track_breakable_stretch ? &m.breakable_stretch : nullptr)
       .newly_broken;
 }
 
@@ -26,7 +27,8 @@ bool forces_are_row_local(const Model& m) { return !m.material.lps && !m.dual_ho
 std::size_t internal_forces_rows(Model& m, bool allow_breaking, const std::vector<std::uint32_t>& rows,
                                  std::vector<std::uint64_t>* log, std::vector<double>* W) {
   return pmb_forces(m.nodes, m.bonds, m.material.shape, allow_breaking, log, W, &m.pdro,
-                    m.material.thermal_strain, &rows)
+                    m.material.thermal_strain, &rows,
+                    m.track_breakable_stretch ? &m.breakable_stretch : nullptr)
       .newly_broken;
 }
 
