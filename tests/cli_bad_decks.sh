@@ -17,6 +17,19 @@ check multirate_lps.yaml "multirate_lps.yaml:7:14: key 'solver.multirate': multi
 check body_outside.yaml "body_outside.yaml:5:9: key 'discretization.body': the body cannot be an outside (complement) region"
 # run refuses a time step above the finest level's stable step; so must check.
 check adapt_time_step.yaml "adapt_time_step.yaml: key 'solver.time_step': 1.5e-07 s exceeds the stable step expected at refinement level 1"
+check list_key.yaml "list_key.yaml:2:1: a key must be a plain name"
+check empty_key.yaml "empty_key.yaml:2:3: a key must be a plain name"
+check end_time_huge.yaml "end_time_huge.yaml: key 'solver.end_time': gives inf steps"
+check time_step_tiny.yaml "time_step_tiny.yaml: key 'solver.end_time': gives 1e+294 steps"
+check end_time_zero_steps.yaml "end_time_zero_steps.yaml: key 'solver.end_time': gives 0 steps"
+check vtu_snapshots_huge.yaml "vtu_snapshots_huge.yaml:5:25: key 'output.vtu_snapshots': must be in 0 ... 100000"
+# Not a regular file: refused before reading (/dev/zero would be read without bound).
+for f in /dev/zero "$dir"; do
+  out=$(timeout 10 "$bin" check "$f" 2>&1); rc=$?
+  [[ $rc -eq 2 && "$out" == *"is not a regular file"* ]] && echo "ok   $f: $out" || { echo "FAIL $f: $rc $out"; fail=1; }
+done
+out=$("$bin" run "$dir/unknown_key.yaml" --threads 0 2>&1); rc=$?
+[[ $rc -eq 2 && "$out" == *"--threads: Value 0 not in range 1 to 4096"* ]] && echo "ok   --threads 0: $out" || { echo "FAIL --threads 0: $rc $out"; fail=1; }
 out=$("$bin" check "$dir/does_not_exist.yaml" 2>&1); rc=$?
 [[ $rc -eq 2 && "$out" == *"cannot open"* ]] && echo "ok   missing file: $out" || { echo "FAIL missing file: $rc $out"; fail=1; }
 # Only a solve can tell that a static system is singular: `run`, not `check`.

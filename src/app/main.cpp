@@ -154,7 +154,7 @@ int main(int argc, char** argv) {
   run->add_option("deck", deck, "YAML input deck")->required();
   run->add_option("--out", out, "output directory (overrides output.directory)");
   run->add_option("--threads", threads, "OpenMP threads (default: all cores)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1, 4096));
   run->add_flag("--quiet", quiet, "no progress output");
   CLI::App* chk = app.add_subcommand("check", "validate a deck and print every resolved parameter");
   chk->add_option("deck", deck, "YAML input deck")->required();
@@ -181,7 +181,7 @@ int main(int argc, char** argv) {
                                           "examples/pdro_sent_2d.yaml, examples/pdro_disk_2d.yaml)");
   study->add_flag("--quick", bar_quick, "pdro-bar: targets 0.9, 0.5, 0.2 mm only; pdro-sent: 1 mm native and n = 2, 5 only; pdro-disk: n = 2 only");
   study->add_option("--threads", threads, "OpenMP threads (default: all cores)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1, 4096));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -71,7 +71,16 @@ TimeStepChoice choose_time_step(const Deck& dk, const Model& m) {
   }
   if (!std::isfinite(c.dt) || c.dt <= 0)
     throw DeckError(dk.file, 0, 0, "solver", "no stable time step: the model has no bonds");
-  c.steps = dk.steps ? *dk.steps : static_cast<long>(std::ceil(dk.end_time / c.dt - 1e-9));
+  // Range-checked before any conversion: a step count beyond this is no run anyone can wait for,
+  // and one below 1 would end "done" with nothing done.
+  constexpr double kMaxSteps = 1e10;
+  const double steps = dk.steps ? static_cast<double>(*dk.steps) : std::ceil(dk.end_time / c.dt - 1e-9);
+  if (!(steps >= 1) || !(steps <= kMaxSteps))
+    throw DeckError(dk.file, 0, 0, dk.steps ? "solver.steps" : "solver.end_time",
+                    fmt::format("gives {:.4g} steps of {:.4g} s; a run takes 1 ... {:.0e} steps "
+                                "(end_time / time_step)",
+                                steps > 0 ? steps : 0.0, c.dt, kMaxSteps));
+  c.steps = static_cast<long>(steps);
   return c;
 }
 

@@ -7,10 +7,15 @@ namespace periadapt {
 
 namespace {
 
+// R^2 - x^2 as (R - x)(R + x): no cancellation near tangency, exactly 0 at |x| = R, and the same
+// bits whether or not the compiler contracts a product into an FMA (R * R - x * x did not: 1.9e-8
+// of a cell's area at -O2).
+double chord2(double R, double x) { return std::max(0.0, (R - std::abs(x)) * (R + std::abs(x))); }
+
 // Antiderivative of sqrt(R^2 - x^2) on [-R, R].
 double chord_integral(double x, double R) {
   x = std::clamp(x, -R, R);
-  return 0.5 * (x * std::sqrt(std::max(0.0, R * R - x * x)) + R * R * std::asin(x / R));
+  return 0.5 * (x * std::sqrt(chord2(R, x)) + R * R * std::asin(x / R));
 }
 
 }  // namespace
@@ -24,7 +29,7 @@ double disk_rectangle_area(double x0, double x1, double y0, double y1, double R)
   int np = 2;
   for (double y : {y0, y1})
     if (std::abs(y) <= R) {  // tangency (|y| = R) splits at x = 0 too
-      const double xb = std::sqrt(R * R - y * y);
+      const double xb = std::sqrt(chord2(R, y));
       for (double c : {-xb, xb})
         if (c > a && c < b) pts[np++] = c;
     }
@@ -36,7 +41,7 @@ double disk_rectangle_area(double x0, double x1, double y0, double y1, double R)
     const double l = pts[k], r = pts[k + 1];
     if (!(r > l)) continue;
     const double xm = 0.5 * (l + r);
-    const double sm = std::sqrt(std::max(0.0, R * R - xm * xm));
+    const double sm = std::sqrt(chord2(R, xm));
     const bool top_in = y1 <= sm, bottom_in = y0 >= -sm;  // which ends the chord does not clip
     if (std::min(y1, sm) <= std::max(y0, -sm)) continue;  // empty on this piece
     const double S = chord_integral(r, R) - chord_integral(l, R);  // integral of s(x)

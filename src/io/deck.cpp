@@ -3,6 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -119,7 +120,24 @@ bool segment_meets_body(const Box& body, const Vec3& a, const Vec3& b, int dim) 
 
 }  // namespace
 
+namespace {
+Deck parse_deck_sections(const std::string& text, const std::string& name);
+}  // namespace
+
 Deck parse_deck(const std::string& text, const std::string& name) {
+  // Every path out of the loader is a DeckError: a yaml-cpp exception that a section's own
+  // checks did not turn into one still names the file and the line.
+  try {
+    return parse_deck_sections(text, name);
+  } catch (const YAML::Exception& e) {
+    throw DeckError(name, e.mark.is_null() ? 0 : e.mark.line + 1,
+                    e.mark.is_null() ? 0 : e.mark.column + 1, "",
+                    "cannot read this YAML: " + e.msg);
+  }
+}
+
+namespace {
+Deck parse_deck_sections(const std::string& text, const std::string& name) {
   YAML::Node root;
   try {
     root = YAML::Load(text);
@@ -512,7 +530,7 @@ Deck parse_deck(const std::string& text, const std::string& name) {
     out.directory = o->text("directory", out.directory);
     out.vtu = o->boolean("vtu", true);
     out.vtu_count = static_cast<int>(o->integer("vtu_snapshots", 10, [](long v) {
-      return v >= 0 ? std::string() : std::string("must be >= 0");
+      return (v >= 0 && v <= 100000) ? std::string() : std::string("must be in 0 ... 100000");
     }));
     out.history_every = o->integer("history_every", 10, [](long v) {
       return v >= 1 ? std::string() : std::string("must be >= 1");
@@ -545,8 +563,22 @@ Deck parse_deck(const std::string& text, const std::string& name) {
   top.finish();
   return dk;
 }
+}  // namespace
 
 Deck load_deck(const std::string& path) {
+  // A deck is a small text file: a device, a pipe or a folder would be read without bound.
+  constexpr std::uintmax_t kMaxDeckBytes = 16u << 20;
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::exists(status))
+    throw DeckError(path, 0, 0, "", "cannot open the deck file");
+  if (!std::filesystem::is_regular_file(status))
+    throw DeckError(path, 0, 0, "", "is not a regular file; a deck is a YAML text file");
+  const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
+  if (ec || bytes > kMaxDeckBytes)
+    throw DeckError(path, 0, 0, "",
+                    "the file has " + std::to_string(bytes) + " bytes; a deck has at most " +
+                        std::to_string(kMaxDeckBytes) + " (16 MiB)");
   std::ifstream in(path);
   if (!in) throw DeckError(path, 0, 0, "", "cannot open the deck file");
   std::stringstream ss;

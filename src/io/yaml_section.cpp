@@ -34,6 +34,8 @@ bool Section::has(const std::string& key) const {
 void Section::missing(const std::string& key, const std::string& what) const {
   if (node_.IsMap()) {
     for (const auto& kv : node_) {
+      if (!kv.first.IsScalar())
+        fail_at(kv.first, "", "a key must be a plain name, not a list, mapping or empty key");
       const std::string k = kv.first.as<std::string>();
       if (read_.count(k)) continue;
       if (edit_distance(k, key) <= std::max<std::size_t>(2, key.size() / 3))
@@ -221,6 +223,8 @@ void Section::finish() const {
   if (!node_.IsMap()) return;
   std::vector<std::string> known(read_.begin(), read_.end());
   for (const auto& kv : node_) {
+    if (!kv.first.IsScalar())
+      fail_at(kv.first, "", "a key must be a plain name, not a list, mapping or empty key");
     const std::string k = kv.first.as<std::string>();
     if (read_.count(k)) continue;
     std::string best;
