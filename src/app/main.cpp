@@ -24,6 +24,7 @@
 #include "studies/wave_levels_2d.hpp"
 #include "studies/weak_directions.hpp"
 #include "io/deck.hpp"
+#include "io/atomic_output.hpp"
 #include "io/deck_error.hpp"
 #include "model/build_model.hpp"
 #include "solver/velocity_verlet.hpp"
@@ -188,6 +189,7 @@ int main(int argc, char** argv) {
     return app.exit(e) == 0 ? 0 : 2;
   }
   if (threads > 0) omp_set_num_threads(threads);
+  std::string run_dir;
   try {
     if (chk->parsed()) return check(deck);
     if (study->parsed()) {
@@ -224,6 +226,12 @@ int main(int argc, char** argv) {
     if (!out.empty()) ro.out_dir = out;
     ro.quiet = quiet;
     const Deck dk = load_deck(deck);
+    // One run per output folder at a time; the lock goes with the process.
+    run_dir = ro.out_dir ? *ro.out_dir : dk.output.directory;
+    std::error_code ec;
+    std::filesystem::create_directories(run_dir, ec);
+    if (ec) throw OutputError("cannot create the output folder " + run_dir + ": " + ec.message());
+    const OutputFolderLock lock(run_dir);
     if (dk.solver == Deck::SolverType::Relaxation) {
       const RunResult r = run_relaxation(dk, ro);
       fmt::print("done: dynamic relaxation, {} load steps, {} iterations, {} bonds broken\n",
@@ -275,6 +283,20 @@ int main(int argc, char** argv) {
   } catch (const DeckError& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return 2;
+  } catch (const OutputError& e) {
+    // The files written before stay as they were; the summary says why the run stopped, if it
+    // can still be written.
+    fmt::print(stderr, "error: {}; the run stopped, earlier outputs are left as they were\n",
+               e.what());
+    if (!run_dir.empty()) {
+      try {
+        const nlohmann::json j = {{"status", "output_failed"}, {"error", e.what()}};
+        write_file_atomically(run_dir + "/summary.json",
+                              [&](std::ostream& o) { o << j.dump(2) << "\n"; });
+      } catch (const OutputError&) {
+      }
+    }
+    return 4;
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return 1;

@@ -1,5 +1,7 @@
 #include "app/relaxation_run.hpp"
 
+#include "io/atomic_output.hpp"
+
 #include <fmt/core.h>
 
 #include <chrono>
@@ -25,11 +27,11 @@ RunResult run_relaxation(const Deck& dk, const RunOptions& opt) {
   const NodeSet& ns = m.nodes;
   const std::string dir = opt.out_dir ? *opt.out_dir : dk.output.directory;
   std::unique_ptr<VtuSeries> vtu;
-  std::ofstream hist;
+  StreamedOutput hist;
   if (opt.write_files) {
     std::filesystem::create_directories(dir);
     if (dk.output.vtu) vtu = std::make_unique<VtuSeries>(dir, "snapshot");
-    hist.open(dir + "/history.csv");
+    hist = StreamedOutput(dir + "/history.csv");
     hist << "load_step,load_factor,iterations,relative_residual,newly_broken,broken_bonds,"
             "max_abs_displacement_m,strain_energy_J,wall_time_s\n";
   }
@@ -49,7 +51,7 @@ RunResult run_relaxation(const Deck& dk, const RunOptions& opt) {
     for (std::size_t i = 0; i < ns.size(); ++i)
       for (int d = 0; d < ns.dim; ++d) umax = std::max(umax, std::abs(ns.u[d][i]));
     const double U = strain_energy(m, W);
-    if (hist)
+    if (hist.is_open())
       hist << fmt::format("{},{:.6g},{},{:.3e},{},{},{:.9e},{:.9e},{:.3f}\n", r.load_step,
                           r.load_factor, r.iterations, r.residual, r.newly_broken, broken, umax, U,
                           std::chrono::duration<double>(clock::now() - t_start).count());
@@ -71,7 +73,10 @@ RunResult run_relaxation(const Deck& dk, const RunOptions& opt) {
   j["bonds"] = m.bonds.num_bonds();
   j["broken_bonds"] = broken;
   j["wall_time_s"] = std::chrono::duration<double>(clock::now() - t_start).count();
-  if (opt.write_files) std::ofstream(dir + "/summary.json") << j.dump(2) << "\n";
+  if (opt.write_files) {
+    hist.finish();
+    write_file_atomically(dir + "/summary.json", [&](std::ostream& o) { o << j.dump(2) << "\n"; });
+  }
   if (!ok)
     throw DeckError(dk.file, 0, 0, "solver.max_iterations",
                     fmt::format("dynamic relaxation did not converge at load step {} (relative "

@@ -20,6 +20,7 @@
 #include "analysis/energy.hpp"
 #include "analysis/refinement_coverage.hpp"
 #include "app/progress.hpp"
+#include "io/atomic_output.hpp"
 #include "io/damage_png.hpp"
 #include "io/deck_error.hpp"
 #include "io/vtu_writer.hpp"
@@ -147,10 +148,10 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
   png_steps.insert(ts.steps);
 
   std::unique_ptr<VtuSeries> vtu;
-  std::ofstream hist;
+  StreamedOutput hist;
   if (opt.write_files) {
     vtu = std::make_unique<VtuSeries>(dir, "snapshot");
-    hist.open(dir + "/history.csv");
+    hist = StreamedOutput(dir + "/history.csv");
     hist << "step,time_s,kinetic_energy_J,strain_energy_J,external_work_J,energy_balance_J,"
             "broken_bonds,damaged_nodes,damage_sum,tip_x_m,tip_y_m,tip_z_m,tip_speed_m_s,nodes,bonds,"
             "wall_time_s\n";
@@ -202,7 +203,7 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
       if (track) {
         if (auto s = tracker.observe(ns, t)) last_tip = s->position;
       }
-      if (hist)
+      if (hist.is_open())
         hist << fmt::format(
             "{},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{},{},{:.4f}\n",
             step, t, K, U, vv.external_work(), K + U - vv.external_work(), vv.broken_bonds(),
@@ -226,13 +227,13 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
   };
 
   std::unique_ptr<Adaptor> adaptor;
-  std::ofstream refinement_log;
+  StreamedOutput refinement_log;
   std::size_t events_logged = 0;
   double adapt_seconds = 0;
   if (dk.adapt.enabled) {
     adaptor = std::make_unique<Adaptor>(m, vv, dk.adapt);
     if (opt.write_files) {
-      refinement_log.open(dir + "/refinement.csv");
+      refinement_log = StreamedOutput(dir + "/refinement.csv");
       refinement_log << "step,time_s,trigger,identified,parents,children,active_nodes,bonds,"
                         "momentum_change_rel,kinetic_before_J,kinetic_after_J,dt_stable_s,"
                         "event_wall_s\n";
@@ -249,7 +250,7 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
       for (int d = 0; d < 3; ++d)
         dp += std::pow(e.stats.momentum_after[d] - e.stats.momentum_before[d], 2);
       const double rel = e.stats.momentum_scale > 0 ? std::sqrt(dp) / e.stats.momentum_scale : std::sqrt(dp);
-      if (refinement_log)
+      if (refinement_log.is_open())
         refinement_log << fmt::format("{},{:.9e},{},{},{},{},{},{},{:.3e},{:.9e},{:.9e},{:.6e},{:.4f}\n",
                                       e.step, e.time, e.trigger, e.identified, e.stats.parents,
                                       e.stats.children, e.active_nodes, e.bonds, rel,
@@ -422,14 +423,15 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
     j["crack"] = c;
     if (opt.write_files && !tracker.speeds().empty()) {
       // Tip speed over time (Eq. 6.1 windows) as CSV and a plot.
-      std::ofstream sc(dir + "/crack_speed.csv");
-      sc << "time_s,tip_speed_m_s\n";
       PlotSeries ps{"tip speed (Eq. 6.1)", {}, {}};
-      for (const auto& w : tracker.speeds()) {
-        sc << fmt::format("{:.9e},{:.6e}\n", w[0], w[1]);
-        ps.x.push_back(w[0] * 1e6);
-        ps.y.push_back(w[1]);
-      }
+      write_file_atomically(dir + "/crack_speed.csv", [&](std::ostream& sc) {
+        sc << "time_s,tip_speed_m_s\n";
+        for (const auto& w : tracker.speeds()) {
+          sc << fmt::format("{:.9e},{:.6e}\n", w[0], w[1]);
+          ps.x.push_back(w[0] * 1e6);
+          ps.y.push_back(w[1]);
+        }
+      });
       PlotOptions po;
       po.title = "crack tip speed";
       po.x_label = "time (us)";
@@ -441,7 +443,9 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
     j["outputs"] = {{"pvd", vtu ? vtu->pvd_path() : ""},
                     {"history", dir + "/history.csv"},
                     {"png", pngs}};
-    std::ofstream(dir + "/summary.json") << j.dump(2) << "\n";
+    hist.finish();
+    refinement_log.finish();
+    write_file_atomically(dir + "/summary.json", [&](std::ostream& o) { o << j.dump(2) << "\n"; });
   }
   return res;
 }

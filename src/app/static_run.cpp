@@ -1,5 +1,7 @@
 #include "app/static_run.hpp"
 
+#include "io/atomic_output.hpp"
+
 #include <fmt/core.h>
 
 #include <chrono>
@@ -71,14 +73,15 @@ RunResult run_static(const Deck& dk, const RunOptions& opt) {
     std::filesystem::create_directories(dir);
     VtuSeries vtu(dir, "snapshot");
     vtu.write(0.0, ns, snapshot_fields(m, W));
-    std::ofstream csv(dir + "/displacement.csv");
-    csv << "node,x,y,z,ux,uy,uz\n";
-    for (std::size_t i = 0; i < ns.size(); ++i)
-      if (ns.flags[i] & kActive)
-        csv << fmt::format("{},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e}\n", i, ns.x[0][i],
-                           ns.x[1][i], ns.x[2][i], ns.u[0][i], ns.u[1][i], ns.u[2][i]);
+    write_file_atomically(dir + "/displacement.csv", [&](std::ostream& csv) {
+      csv << "node,x,y,z,ux,uy,uz\n";
+      for (std::size_t i = 0; i < ns.size(); ++i)
+        if (ns.flags[i] & kActive)
+          csv << fmt::format("{},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e}\n", i, ns.x[0][i],
+                             ns.x[1][i], ns.x[2][i], ns.u[0][i], ns.u[1][i], ns.u[2][i]);
+    });
     j["outputs"] = {{"pvd", vtu.pvd_path()}, {"displacement_csv", dir + "/displacement.csv"}};
-    std::ofstream(dir + "/summary.json") << j.dump(2) << "\n";
+    write_file_atomically(dir + "/summary.json", [&](std::ostream& o) { o << j.dump(2) << "\n"; });
   }
   return res;
 }

@@ -2,6 +2,11 @@
 
 #include <png.h>
 
+#include <cerrno>
+#include <cstring>
+
+#include "io/atomic_output.hpp"
+
 #include <cstdint>
 #include <cstdio>
 #include <memory>
@@ -17,8 +22,15 @@ void write_png_file(cairo_surface_t* surf, const std::string& path) {
   const int w = cairo_image_surface_get_width(surf), h = cairo_image_surface_get_height(surf);
   const int stride = cairo_image_surface_get_stride(surf);
   const unsigned char* data = cairo_image_surface_get_data(surf);
-  std::unique_ptr<std::FILE, int (*)(std::FILE*)> fp(std::fopen(path.c_str(), "wb"), &std::fclose);
-  if (!fp) throw std::runtime_error("cannot write " + path);
+  // Through a temporary name (io/atomic_output.hpp): a failed write leaves the old picture.
+  const std::string tmp = path + ".tmp";
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> fp(std::fopen(tmp.c_str(), "wb"), &std::fclose);
+  if (!fp) throw OutputError("cannot write " + path + ": " + std::strerror(errno));
+  auto fail = [&](const std::string& why) {
+    fp.reset();
+    std::remove(tmp.c_str());
+    return OutputError("cannot write " + path + ": " + why);
+  };
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
   png_infop info = png ? png_create_info_struct(png) : nullptr;
   if (!info) {
@@ -29,7 +41,7 @@ void write_png_file(cairo_surface_t* surf, const std::string& path) {
   // libpng reports errors by longjmp: nothing with a destructor may be created below.
   if (setjmp(png_jmpbuf(png))) {
     png_destroy_write_struct(&png, &info);
-    throw std::runtime_error("cannot write " + path);
+    throw fail("the PNG encoder stopped (disk full?)");
   }
   png_init_io(png, fp.get());
   png_set_compression_level(png, 1);
@@ -50,7 +62,13 @@ void write_png_file(cairo_surface_t* surf, const std::string& path) {
   }
   png_write_end(png, nullptr);
   png_destroy_write_struct(&png, &info);
-  if (std::fflush(fp.get()) != 0) throw std::runtime_error("cannot write " + path);
+  if (std::fflush(fp.get()) != 0 || std::ferror(fp.get())) throw fail(std::strerror(errno));
+  if (std::fclose(fp.release()) != 0) {
+    const std::string why = std::strerror(errno);
+    std::remove(tmp.c_str());
+    throw OutputError("cannot write " + path + ": " + why);
+  }
+  commit_file(tmp, path);
 }
 
 }  // namespace periadapt

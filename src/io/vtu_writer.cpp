@@ -1,5 +1,7 @@
 #include "io/vtu_writer.hpp"
 
+#include "io/atomic_output.hpp"
+
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -23,9 +25,7 @@ std::string VtuSeries::write(double time, const NodeSet& ns, const std::vector<P
   const std::uint64_t n = ids.size();
   const std::string name = fmt::format("{}_{:05d}.vtu", base_, entries_.size());
   const std::string path = dir_ + "/" + name;
-  const std::string tmp = path + ".tmp";
-  std::ofstream out(tmp, std::ios::binary);
-  if (!out) throw std::runtime_error("cannot write " + path);
+  write_file_atomically(path, [&](std::ostream& out) {
 
   // Block layout in the appended section: [uint64 byte count][payload] per array.
   std::uint64_t offset = 0;
@@ -78,24 +78,20 @@ std::string VtuSeries::write(double time, const NodeSet& ns, const std::vector<P
   std::vector<std::uint8_t> types(n, 1);  // VTK_VERTEX
   put(types.data(), n);
   out << "\n  </AppendedData>\n</VTKFile>\n";
-  out.close();
-  std::filesystem::rename(tmp, path);
+  }, true);
   entries_.emplace_back(time, name);
   write_pvd();
   return path;
 }
 
 void VtuSeries::write_pvd() const {
-  const std::string tmp = pvd_ + ".tmp";
-  {
-    std::ofstream out(tmp);
+  write_file_atomically(pvd_, [&](std::ostream& out) {
     out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n"
            "  <Collection>\n";
     for (const auto& [t, f] : entries_)
       out << fmt::format("    <DataSet timestep=\"{:.9e}\" part=\"0\" file=\"{}\"/>\n", t, f);
     out << "  </Collection>\n</VTKFile>\n";
-  }
-  std::filesystem::rename(tmp, pvd_);
+  });
 }
 
 }  // namespace periadapt

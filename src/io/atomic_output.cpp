@@ -1,0 +1,98 @@
+#include "io/atomic_output.hpp"
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+
+namespace periadapt {
+
+namespace {
+
+std::string reason() { return std::strerror(errno); }
+
+void sync_file(const std::string& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY);
+  if (fd < 0) throw OutputError("cannot write " + path + ": " + reason());
+  const bool ok = ::fsync(fd) == 0;
+  const std::string why = ok ? "" : reason();
+  ::close(fd);
+  if (!ok) throw OutputError("cannot write " + path + ": " + why);
+}
+
+}  // namespace
+
+void commit_file(const std::string& tmp, const std::string& path) {
+  try {
+    sync_file(tmp);
+    std::error_code ec;
+    std::filesystem::rename(tmp, path, ec);
+    if (ec) throw OutputError("cannot write " + path + ": " + ec.message());
+  } catch (...) {
+    std::error_code ignore;
+    std::filesystem::remove(tmp, ignore);
+    throw;
+  }
+}
+
+void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& fill,
+                           bool binary) {
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp, binary ? std::ios::binary : std::ios::out);
+    if (!out) throw OutputError("cannot write " + path + ": " + reason());
+    fill(out);
+    out.flush();
+    const bool ok = static_cast<bool>(out);
+    out.close();
+    if (!ok || out.fail()) {
+      const std::string why = reason();
+      std::error_code ignore;
+      std::filesystem::remove(tmp, ignore);
+      throw OutputError("cannot write " + path + ": " + why + " (disk full?)");
+    }
+  }
+  commit_file(tmp, path);
+}
+
+StreamedOutput::StreamedOutput(std::string path)
+    : path_(std::move(path)), part_(path_ + ".part"), out_(part_) {
+  if (!out_) throw OutputError("cannot write " + part_ + ": " + reason());
+}
+
+StreamedOutput& StreamedOutput::operator<<(const std::string& text) {
+  out_ << text;
+  if (!out_) throw OutputError("cannot write " + part_ + ": " + reason() + " (disk full?)");
+  return *this;
+}
+
+void StreamedOutput::finish() {
+  if (!out_.is_open()) return;
+  out_.flush();
+  const bool ok = static_cast<bool>(out_);
+  out_.close();
+  if (!ok || out_.fail())
+    throw OutputError("cannot write " + part_ + ": " + reason() + " (disk full?)");
+  commit_file(part_, path_);
+}
+
+OutputFolderLock::OutputFolderLock(const std::string& dir) {
+  const std::string path = dir + "/.periadapt.lock";
+  fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (fd_ < 0) throw OutputError("cannot write into " + dir + ": " + reason());
+  if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+    ::close(fd_);
+    fd_ = -1;
+    throw OutputError("another run is writing into " + dir +
+                      "; give this one its own folder with --out");
+  }
+}
+
+OutputFolderLock::~OutputFolderLock() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+}  // namespace periadapt
