@@ -23,6 +23,18 @@ check end_time_huge.yaml "end_time_huge.yaml: key 'solver.end_time': gives inf s
 check time_step_tiny.yaml "time_step_tiny.yaml: key 'solver.end_time': gives 1e+294 steps"
 check end_time_zero_steps.yaml "end_time_zero_steps.yaml: key 'solver.end_time': gives 0 steps"
 check vtu_snapshots_huge.yaml "vtu_snapshots_huge.yaml:5:25: key 'output.vtu_snapshots': must be in 0 ... 100000"
+# Impossible memory: refused from the deck alone, within 2 s and under a 3 GB address-space cap,
+# with the estimate in the message.
+mem() {  # deck expected-substring
+  out=$(ulimit -v 3000000; timeout 2 "$bin" check "$dir/$1" 2>&1); rc=$?
+  if [[ $rc -ne 2 || "$out" != *"$2"* || "$out" != *"the deck asks for about"* ]]; then
+    echo "FAIL $1: exit code $rc: $out"; fail=1; return; fi
+  echo "ok   $1: $out"
+}
+mem memory_spacing.yaml "key 'discretization.spacing'"
+mem memory_horizon.yaml "this machine has available"
+mem memory_levels.yaml "at most 2^31 nodes"
+mem memory_limit.yaml "key 'solver.memory_limit_gb'"
 # Not a regular file: refused before reading (/dev/zero would be read without bound).
 for f in /dev/zero "$dir"; do
   out=$(timeout 10 "$bin" check "$f" 2>&1); rc=$?

@@ -315,3 +315,35 @@ TEST(Dynamics, ExternalWorkOfADrivenBodyMatchesItsAnalyticWork) {
     RecordProperty("energy_balance_error", std::to_string(worst));
   }
 }
+
+#include "model/memory_estimate.hpp"
+
+TEST(Dynamics, TheDeckMemoryEstimateBoundsTheBuiltModelClosely) {
+  // The estimate refuses decks before any allocation, so it must not refuse workable ones: it
+  // may be above the built model (holes, edges and pre-cracks are not subtracted) but within 2x,
+  // and never below it. 2D with a hole and an initial zone, 3D, and the exact-area rule.
+  const std::vector<std::string> decks = {
+      "model: {dimension: 2}\nmaterial: {youngs_modulus: 1.0, density: 1.0}\n"
+      "discretization: {spacing: 1.0e-3, body: {box: {min: [0, 0], max: [0.1, 0.04]}}, "
+      "holes: [{disk: {center: [0.05, 0.02], radius: 0.01}}]}\n"
+      "damage: {enabled: false}\nsolver: {end_time: 1.0e-6}\n"
+      "adapt: {initial_refinement: [{region: {box: {min: [0.0, 0.0], max: [0.03, 0.04]}}, level: 1}]}\n",
+      "model: {dimension: 3}\nmaterial: {youngs_modulus: 1.0, density: 1.0}\n"
+      "discretization: {spacing: 1.0e-3, body: {box: {min: [0, 0, 0], max: [0.03, 0.02, 0.01]}}}\n"
+      "damage: {enabled: false}\nsolver: {end_time: 1.0e-6}\n",
+      "model: {dimension: 2}\nmaterial: {youngs_modulus: 1.0, density: 1.0}\n"
+      "discretization: {spacing: 1.0e-3, quadrature: ipa_hybrid, body: {box: {min: [0, 0], max: [0.05, 0.05]}}}\n"
+      "damage: {enabled: false}\nsolver: {end_time: 1.0e-6}\n"};
+  for (const std::string& yaml : decks) {
+    const Deck dk = test::deck_from(yaml);
+    const MemoryEstimate e = estimate_memory(dk);
+    const Model m = build_model(dk);
+    std::size_t active = 0;
+    for (auto f : m.nodes.flags) active += (f & kActive) != 0;
+    const double bonds = static_cast<double>(m.bonds.num_bonds());
+    EXPECT_GE(e.nodes, static_cast<double>(active)) << yaml;
+    EXPECT_LE(e.nodes, 2.0 * static_cast<double>(active)) << yaml;
+    EXPECT_GE(e.bonds, bonds) << yaml;
+    EXPECT_LE(e.bonds, 2.0 * bonds) << yaml;
+  }
+}

@@ -365,6 +365,10 @@ Deck parse_deck_sections(const std::string& text, const std::string& name) {
   {
     Section s = top.section("solver");
     const std::string type = s.choice("type", {"explicit", "static", "relaxation"}, "explicit");
+    if (s.has("memory_limit_gb"))
+      dk.memory_limit_gb = s.number("memory_limit_gb", std::nullopt, [](double v) {
+        return (v > 0 && v <= 1e6) ? std::string() : std::string("must be in (0, 1e6] GB");
+      });
     dk.solver = type == "static"       ? Deck::SolverType::Static
                 : type == "relaxation" ? Deck::SolverType::Relaxation
                                        : Deck::SolverType::Explicit;

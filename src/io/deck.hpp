@@ -83,6 +83,8 @@ struct Deck {
   int load_steps = 1;               // relaxation
   double relax_tolerance = 1e-6;    // relaxation
   long relax_max_iterations = 200000;
+  // Refuse decks whose estimated model memory exceeds this (default: the available memory).
+  std::optional<double> memory_limit_gb;
   bool dual_horizon = false;  // static solver: bonds act on both ends (dual-horizon form)
   std::optional<double> time_step;
   double safety = 0.8;

@@ -11,6 +11,7 @@
 #include "core/expression.hpp"
 #include "discretize/families.hpp"
 #include "io/deck_error.hpp"
+#include "model/memory_estimate.hpp"
 
 namespace periadapt {
 
@@ -32,11 +33,10 @@ Model build_model(const Deck& dk) {
   ns.dim = dk.dim;
   m.grid_spacing = dk.grid.spacing;
   m.horizon = dk.horizon;
+  check_memory_estimate(dk);  // before any allocation
   generate_grid(dk.grid, ns);
   if (ns.size() == 0)
     throw DeckError(dk.file, 0, 0, "discretization", "the grid has no nodes inside the body");
-  if (ns.size() > 0x7fffffffu)
-    throw DeckError(dk.file, 0, 0, "discretization.spacing", "more than 2^31 nodes");
 
   MaterialLaw& mat = m.material;
   mat.name = dk.material_name;

@@ -1,0 +1,113 @@
+#include "model/memory_estimate.hpp"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "core/bond_families.hpp"
+#include "core/node_set.hpp"
+#include "io/deck_error.hpp"
+
+namespace periadapt {
+
+namespace {
+
+// MemAvailable of /proc/meminfo (bytes), 0 where it cannot be read.
+double available_memory() {
+  std::ifstream in("/proc/meminfo");
+  std::string key;
+  double kb = 0;
+  std::string unit;
+  while (in >> key >> kb >> unit)
+    if (key == "MemAvailable:") return kb * 1024.0;
+  return 0;
+}
+
+// Extent of the region's bounding box clipped to the body, per dimension (the whole body for
+// complements and `all`).
+double region_measure(const Shape& s, const Box& body, int dim) {
+  Box b = body;
+  if (!s.outside) {
+    if (s.kind == Shape::Kind::Box) {
+      b = s.box;
+    } else if (s.kind != Shape::Kind::All) {
+      for (int d = 0; d < 3; ++d) {
+        const bool along_axis = s.kind == Shape::Kind::Cylinder && d == s.axis;
+        b.lo[d] = along_axis ? body.lo[d] : s.center[d] - s.radius;
+        b.hi[d] = along_axis ? body.hi[d] : s.center[d] + s.radius;
+      }
+    }
+  }
+  double v = 1;
+  for (int d = 0; d < dim; ++d) v *= std::max(0.0, std::min(b.hi[d], body.hi[d]) - std::max(b.lo[d], body.lo[d]));
+  return v;
+}
+
+}  // namespace
+
+MemoryEstimate estimate_memory(const Deck& dk) {
+  MemoryEstimate e;
+  const int D = dk.dim;
+  const double dx = dk.grid.spacing;
+  const Box& body = dk.grid.body;
+  // Nodes of the body's box grid (a rotated lattice covers at most the box's circumscribed one).
+  double nodes = 1;
+  for (int d = 0; d < D; ++d) {
+    double extent = body.hi[d] - body.lo[d];
+    if (dk.grid.rotation_deg != 0.0) {
+      double diag2 = 0;
+      for (int k = 0; k < D; ++k) diag2 += std::pow(body.hi[k] - body.lo[k], 2);
+      extent = std::sqrt(diag2);
+    }
+    nodes *= std::floor(extent / dx) + 2;
+  }
+  // Initial zones: each coarse node inside becomes 2^(dim level) nodes.
+  double added = 0;
+  for (const InitialRefinement& z : dk.adapt.initial) {
+    const double cells = region_measure(z.region, body, D) / std::pow(dx, D);
+    added = std::max(added, std::min(cells, nodes) * (std::pow(2.0, D * z.level) - 1));
+  }
+  e.nodes = nodes + added;
+  // Bonds per node: the horizon ball (widened by half a cell diagonal for the exact-area rules)
+  // over the cell measure, at the largest m any level has.
+  double m = dk.horizon / dx;
+  if (dk.adapt.enabled || !dk.adapt.initial.empty()) {
+    const int top = dk.adapt.max_level;
+    if (dk.adapt.scaling == HorizonScaling::M) m *= std::pow(2.0, top);
+    for (double ml : dk.adapt.m_per_level) m = std::max(m, ml);
+  }
+  const bool exact_area = dk.quadrature == Quadrature::Subcell || dk.quadrature == Quadrature::IpaHybrid;
+  const double r = m + (exact_area ? 0.5 * std::sqrt(static_cast<double>(D)) : 0.0);
+  const double per_node = D == 1 ? 2 * r : D == 2 ? M_PI * r * r : 4.0 / 3.0 * M_PI * r * r * r;
+  e.bonds = e.nodes * per_node;
+  const double spare = dk.adapt.enabled ? 1.25 : 1.0;
+  const double per_bond = BondFamilies::bytes_per_bond() + (dk.dual_horizon ? 20 : 0);
+  e.bytes = e.nodes * (NodeSet::bytes_per_node() + 16 + 24) + e.bonds * per_bond * spare;
+  e.available = available_memory();
+  return e;
+}
+
+void check_memory_estimate(const Deck& dk) {
+  const MemoryEstimate e = estimate_memory(dk);
+  const std::string what = fmt::format("about {:.3g} nodes and {:.3g} bonds, {:.3g} GB", e.nodes,
+                                       e.bonds, e.bytes / 1e9);
+  if (!(e.nodes <= 2147483647.0))
+    throw DeckError(dk.file, 0, 0, "discretization.spacing",
+                    "the deck asks for " + what + "; at most 2^31 nodes (raise the spacing)");
+  const double limit = dk.memory_limit_gb ? *dk.memory_limit_gb * 1e9 : e.available;
+  if (limit > 0 && !(e.bytes <= limit))
+    throw DeckError(dk.file, 0, 0,
+                    dk.memory_limit_gb ? "solver.memory_limit_gb" : "discretization",
+                    fmt::format("the deck asks for {}; {} {:.3g} GB (raise the spacing, lower "
+                                "horizon_factor or the refinement levels)",
+                                what,
+                                dk.memory_limit_gb ? "the deck's limit is"
+                                                   : "this machine has available",
+                                limit / 1e9));
+}
+
+}  // namespace periadapt
