@@ -23,11 +23,13 @@ std::size_t lps_dual_forces(NodeSet& ns, BondFamilies& bf, InfluenceShape shape,
                             std::vector<std::uint64_t>* log, std::vector<double>* Wout) {
   const std::size_t n = ns.size();
   // 1. Breaking, each owner on its own memberships.
-  std::vector<std::uint64_t> newly;
+  // (bond, owner): after a refinement event rows are no longer stored in node order, so the
+  // owner is recorded, not inferred from the bond's index.
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> newly;
   if (allow_breaking) {
 #pragma omp parallel
     {
-      std::vector<std::uint64_t> mine;
+      std::vector<std::pair<std::uint64_t, std::uint32_t>> mine;
 #pragma omp for schedule(dynamic, 512)
       for (std::size_t i = 0; i < n; ++i) {
         if (!(ns.flags[i] & kActive) || (ns.flags[i] & kNoFail)) continue;
@@ -36,16 +38,15 @@ std::size_t lps_dual_forces(NodeSet& ns, BondFamilies& bf, InfluenceShape shape,
           if (!BondFamilies::intact(bf.beta[k]) || bf.inv_length[k] < 0.0) continue;
           double d[3];
           const double x = bf.length(k);
-          if (bond_extension(ns, i, bf.neighbor[k], x, d) > s0 * x) mine.push_back(k);
+          if (bond_extension(ns, i, bf.neighbor[k], x, d) > s0 * x)
+            mine.emplace_back(k, static_cast<std::uint32_t>(i));
         }
       }
 #pragma omp critical(lps_dual_broken)
       newly.insert(newly.end(), mine.begin(), mine.end());
     }
     std::sort(newly.begin(), newly.end());
-    std::size_t o = 0;
-    for (std::uint64_t k : newly) {
-      while (bf.end(o) <= k) ++o;
+    for (const auto& [k, o] : newly) {
       ns.broken_weight[o] += static_cast<double>(bf.beta[k]) * ns.volume[bf.neighbor[k]];
       bf.beta[k] = -bf.beta[k];
       if (log) log->push_back(k);

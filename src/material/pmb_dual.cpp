@@ -46,10 +46,12 @@ struct DualForces {
       Wout->assign(n, 0.0);
       W = Wout->data();
     }
-    std::vector<std::uint64_t> newly;
+    // (bond, owner): after a refinement event rows are no longer stored in node order, so the
+    // owner is recorded, not inferred from the bond's index.
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> newly;
 #pragma omp parallel
     {
-      std::vector<std::uint64_t> mine;
+      std::vector<std::pair<std::uint64_t, std::uint32_t>> mine;
 #pragma omp for schedule(dynamic, 512)
       for (std::size_t i = 0; i < n; ++i) {
         if (!(flags[i] & kActive)) {
@@ -73,7 +75,7 @@ struct DualForces {
           const double s = r * ail - 1.0;
           // Broken in this pass: no force either way (breaking applied after the pass).
           if (v.inv_len[k] > 0.0 && s > s0) {
-            mine.push_back(k);
+            mine.emplace_back(k, static_cast<std::uint32_t>(i));
             continue;
           }
           const double g = influence_at<S>(1.0 / (ail * h));
@@ -106,18 +108,8 @@ struct DualForces {
     }
     // Bonds broken in this pass, in a fixed order so the result does not depend on the threads.
     std::sort(newly.begin(), newly.end());
-    std::vector<std::uint32_t> owner_of;
-    if (!newly.empty()) {
-      owner_of.resize(newly.size());
-      std::size_t o = 0;
-      for (std::size_t q = 0; q < newly.size(); ++q) {
-        while (bf.end(o) <= newly[q]) ++o;
-        owner_of[q] = static_cast<std::uint32_t>(o);
-      }
-    }
-    for (std::size_t q = 0; q < newly.size(); ++q) {
-      const std::uint64_t k = newly[q];
-      const std::size_t i = owner_of[q], j = bf.neighbor[k];
+    for (const auto& [k, i] : newly) {
+      const std::size_t j = bf.neighbor[k];
       ns.broken_weight[i] += static_cast<double>(bf.beta[k]) * ns.volume[j];
       bf.beta[k] = -bf.beta[k];
       if (log) log->push_back(k);
