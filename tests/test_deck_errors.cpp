@@ -140,3 +140,19 @@ TEST(DeckErrors, AdaptWithoutTriggersTakesTheDocumentedDefaults) {
   EXPECT_FALSE(e.adapt.damage_trigger);
   EXPECT_FALSE(e.adapt.interface_horizon);
 }
+
+TEST(DeckErrors, FractureEnergyAndCriticalStretchAreExclusive) {
+  // Both would define s0; the deck must not silently take one of them.
+  const DeckError e = expect_error(replace(kGood, "  fracture_energy: 135\n",
+                                           "  fracture_energy: 135\n  critical_stretch: 1.0e-3\n"));
+  EXPECT_TRUE(contains(e, "bad.yaml:7:")) << e.what();
+  EXPECT_TRUE(contains(e, "material.critical_stretch")) << e.what();
+  EXPECT_TRUE(contains(e, "not both")) << e.what();
+}
+
+TEST(DeckErrors, HorizonAndHorizonFactorAreExclusive) {
+  const DeckError e = expect_error(replace(kGood, "  horizon_factor: 3\n",
+                                           "  horizon_factor: 3\n  horizon: 0.003\n"));
+  EXPECT_TRUE(contains(e, "discretization.horizon")) << e.what();
+  EXPECT_TRUE(contains(e, "not both")) << e.what();
+}
