@@ -24,6 +24,7 @@
 #include "studies/wave_levels_2d.hpp"
 #include "studies/weak_directions.hpp"
 #include "io/deck.hpp"
+#include "app/interrupt.hpp"
 #include "io/atomic_output.hpp"
 #include "io/deck_error.hpp"
 #include "model/build_model.hpp"
@@ -147,6 +148,7 @@ int check(const std::string& path) {
 
 int main(int argc, char** argv) {
   CLI::App app{"PeriAdapt: peridynamics with adaptive grid refinement and scaling"};
+  app.set_version_flag("--version", std::string("periadapt ") + PERIADAPT_VERSION);
   app.require_subcommand(1);
   std::string deck, out;
   int threads = 0;
@@ -183,6 +185,17 @@ int main(int argc, char** argv) {
   study->add_flag("--quick", bar_quick, "pdro-bar: targets 0.9, 0.5, 0.2 mm only; pdro-sent: 1 mm native and n = 2, 5 only; pdro-disk: n = 2 only");
   study->add_option("--threads", threads, "OpenMP threads (default: all cores)")
       ->check(CLI::Range(1, 4096));
+  // A first word that is no subcommand (CLI11 would report only that one is required).
+  if (argc > 1 && argv[1][0] != '-') {
+    const std::string word = argv[1];
+    bool known = false;
+    for (const CLI::App* sub : app.get_subcommands({})) known = known || sub->get_name() == word;
+    if (!known) {
+      fmt::print(stderr, "error: '{}' is not a periadapt command; the commands are run, check and "
+                         "study (periadapt --help)\n", word);
+      return 2;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -246,8 +259,16 @@ int main(int argc, char** argv) {
                  ro.out_dir ? *ro.out_dir : dk.output.directory);
       return 0;
     }
+    install_interrupt_handlers();
     RunResult r = run_simulation(dk, ro);
     const auto& s = r.summary;
+    if (r.interrupted) {
+      fmt::print(stderr,
+                 "interrupted by signal {} after step {}: history, snapshots so far and "
+                 "summary.json (status interrupted) are in {}\n",
+                 r.interrupted, r.steps_done, run_dir);
+      return 128 + r.interrupted;
+    }
     if (r.diverged) {
       const auto& d = s["divergence"];
       fmt::print(stderr,

@@ -19,6 +19,7 @@
 #include "analysis/crack_tip.hpp"
 #include "analysis/energy.hpp"
 #include "analysis/refinement_coverage.hpp"
+#include "app/interrupt.hpp"
 #include "app/progress.hpp"
 #include "io/atomic_output.hpp"
 #include "io/damage_png.hpp"
@@ -100,10 +101,11 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
   const std::string dir = opt.out_dir ? *opt.out_dir : dk.output.directory;
   if (opt.write_files) std::filesystem::create_directories(dir);
   if (!opt.quiet) {
-    fmt::print("PeriAdapt: {} nodes, {} bonds ({} cut by pre-cracks), {}D PMB, c0 = {:.4e}, "
+    fmt::print("PeriAdapt: {} nodes, {} bonds ({} cut by pre-cracks), {}D {}{}, c0 = {:.4e}, "
                "s0 = {:.4e}\n",
-               ns.size(), m.bonds.num_bonds(), m.precrack_bonds, ns.dim, m.material.c0,
-               m.material.s0);
+               ns.size(), m.bonds.num_bonds(), m.precrack_bonds, ns.dim,
+               m.material.lps ? "LPS" : "PMB", m.dual_horizon ? " (dual horizon)" : "",
+               m.material.c0, m.material.s0);
     fmt::print("time step {:.4e} s (stable bound {:.4e} s), {} steps, {} threads{}\n", ts.dt,
                ts.dt_crit, ts.steps, omp_get_max_threads(),
                dk.multirate ? fmt::format("; multi-rate: nodes stable at k dt take it, k <= {}",
@@ -169,7 +171,8 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
   double K = 0, U = 0;
 
   double observe_seconds = 0, output_seconds = 0;  // history/tracker sampling; VTU and PNG files
-  auto observe = [&](long step) {
+  // `last`: the run stops after this step (interrupted): history row, snapshot and picture of it.
+  auto observe = [&](long step, bool last = false) {
     const auto t_obs = clock::now();
     struct AddElapsed {
       clock::time_point t0;
@@ -177,9 +180,9 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
       ~AddElapsed() { acc += std::chrono::duration<double>(clock::now() - t0).count(); }
     } obs_timer{t_obs, observe_seconds};
     const double t = vv.time();
-    const bool do_hist = step % dk.output.history_every == 0 || step == ts.steps;
-    const bool do_vtu = vtu && vtu_steps.count(step);
-    const bool do_png = opt.write_files && png_steps.count(step);
+    const bool do_hist = step % dk.output.history_every == 0 || step == ts.steps || last;
+    const bool do_vtu = vtu && (vtu_steps.count(step) || last);
+    const bool do_png = opt.write_files && (png_steps.count(step) || last);
     if (!(do_hist || do_vtu || do_png)) return;
     if (do_hist || do_vtu) {
       // From the step's own force pass when it was asked for (see the loop), else a bond pass.
@@ -278,17 +281,26 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
       res.diverged = true;
       break;
     }
-    observe(s);
+    res.interrupted = interrupt_signal();
+    observe(s, res.interrupted != 0);
     bar.update(s, track && tracker.initiation_time()
                       ? fmt::format("tip v = {:.0f} m/s", tracker.current_speed())
                       : "");
+    if (res.interrupted) {
+      res.steps_done = s;
+      break;
+    }
   }
   bar.finish();
   const double wall = std::chrono::duration<double>(clock::now() - t_start).count();
 
   nlohmann::json& j = res.summary;
   j["deck"] = dk.file;
-  j["status"] = res.diverged ? "diverged" : "completed";
+  j["status"] = res.diverged ? "diverged" : res.interrupted ? "interrupted" : "completed";
+  if (res.interrupted) {
+    j["interrupted_by_signal"] = res.interrupted;
+    j["steps_done"] = res.steps_done;
+  }
   j["dimension"] = ns.dim;
   j["nodes"] = {{"initial", nodes0}, {"final", active_count(ns)}, {"slots", ns.size()}};
   j["bonds"] = m.bonds.num_bonds();

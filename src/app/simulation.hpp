@@ -18,6 +18,8 @@ struct RunOptions {
 
 struct RunResult {
   bool diverged = false;
+  int interrupted = 0;  // the signal that stopped the run (SIGINT, SIGTERM), 0 if none
+  long steps_done = 0;  // with `interrupted`: the last step taken
   nlohmann::json summary;
   Model model;  // final state
 };
