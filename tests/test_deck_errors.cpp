@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <vector>
 
 #include "io/deck.hpp"
 #include "io/deck_error.hpp"
@@ -39,6 +40,16 @@ DeckError expect_error(const std::string& yaml) {
     return e;
   }
   ADD_FAILURE() << "deck was accepted:\n" << yaml;
+  return DeckError("", 0, 0, "", "");
+}
+
+DeckError expect_error_with(const std::string& yaml, const std::vector<std::string>& overrides) {
+  try {
+    parse_deck(yaml, "bad.yaml", overrides);
+  } catch (const DeckError& e) {
+    return e;
+  }
+  ADD_FAILURE() << "deck was accepted with the overrides";
   return DeckError("", 0, 0, "", "");
 }
 
@@ -155,4 +166,21 @@ TEST(DeckErrors, HorizonAndHorizonFactorAreExclusive) {
                                            "  horizon_factor: 3\n  horizon: 0.003\n"));
   EXPECT_TRUE(contains(e, "discretization.horizon")) << e.what();
   EXPECT_TRUE(contains(e, "not both")) << e.what();
+}
+
+TEST(DeckErrors, CommandLineOverridesAreCheckedLikeTheDecksOwnKeys) {
+  // --set key.path=value: the same deck as editing the file, and the same checks.
+  const Deck edited = parse_deck(replace(kGood, "spacing: 0.001", "spacing: 0.002"), "a.yaml");
+  const Deck set = parse_deck(kGood, "a.yaml", {"discretization.spacing=0.002", "adapt.max_level=2"});
+  EXPECT_EQ(set.grid.spacing, edited.grid.spacing);
+  EXPECT_EQ(set.horizon, edited.horizon);
+  EXPECT_TRUE(set.adapt.enabled);
+  EXPECT_EQ(set.adapt.max_level, 2);
+  const Deck listed = parse_deck(kGood, "a.yaml", {"cracks.0.segment=[[0, 0.01], [0.05, 0.01]]"});
+  ASSERT_EQ(listed.cracks.size(), 1u);
+  EXPECT_TRUE(contains(expect_error_with(kGood, {"material.youngs_modulus=-1"}),
+                       "key 'material.youngs_modulus': must be > 0"));
+  EXPECT_TRUE(contains(expect_error_with(kGood, {"material.colour=red"}), "unknown key"));
+  EXPECT_TRUE(contains(expect_error_with(kGood, {"cracks.3.segment=[]"}), "not an index"));
+  EXPECT_TRUE(contains(expect_error_with(kGood, {"spacing"}), "expected key.path=value"));
 }

@@ -34,8 +34,8 @@ using namespace periadapt;
 
 namespace {
 
-int check(const std::string& path) {
-  const Deck dk = load_deck(path);
+int check(const std::string& path, const std::vector<std::string>& overrides) {
+  const Deck dk = load_deck(path, overrides);
   const Model m = build_model(dk);
   const bool is_static = dk.solver != Deck::SolverType::Explicit;
   const TimeStepChoice ts = is_static ? TimeStepChoice{0, 0, 0, 0} : choose_time_step(dk, m);
@@ -159,8 +159,13 @@ int main(int argc, char** argv) {
   run->add_option("--threads", threads, "OpenMP threads (default: all cores)")
       ->check(CLI::Range(1, 4096));
   run->add_flag("--quiet", quiet, "no progress output");
+  std::vector<std::string> overrides;
+  run->add_option("--set", overrides,
+                  "override a deck key, checked like the deck's own: key.path=value (repeatable; "
+                  "a number indexes a list, e.g. loads.0.value=[0,2e7])");
   CLI::App* chk = app.add_subcommand("check", "validate a deck and print every resolved parameter");
   chk->add_option("deck", deck, "YAML input deck")->required();
+  chk->add_option("--set", overrides, "override a deck key: key.path=value (repeatable)");
   std::string study_name;
   CLI::App* study = app.add_subcommand("study", "run a built-in study of the seeds and print its "
                                                 "tables beside the published numbers");
@@ -204,7 +209,7 @@ int main(int argc, char** argv) {
   if (threads > 0) omp_set_num_threads(threads);
   std::string run_dir;
   try {
-    if (chk->parsed()) return check(deck);
+    if (chk->parsed()) return check(deck, overrides);
     if (study->parsed()) {
       if (!out.empty()) std::filesystem::create_directories(out);
       if (study_name == "static-plate-2d") return run_static_plate_study(out);
@@ -238,7 +243,7 @@ int main(int argc, char** argv) {
     RunOptions ro;
     if (!out.empty()) ro.out_dir = out;
     ro.quiet = quiet;
-    const Deck dk = load_deck(deck);
+    const Deck dk = load_deck(deck, overrides);
     // One run per output folder at a time; the lock goes with the process.
     run_dir = ro.out_dir ? *ro.out_dir : dk.output.directory;
     std::error_code ec;

@@ -121,14 +121,78 @@ bool segment_meets_body(const Box& body, const Vec3& a, const Vec3& b, int dim) 
 }  // namespace
 
 namespace {
-Deck parse_deck_sections(const std::string& text, const std::string& name);
+Deck parse_deck_sections(const std::string& text, const std::string& name,
+                         const std::vector<std::string>& overrides);
+
+// A copy without source marks: an error on an overridden key names the key, not a line of the
+// deck file (the value came from the command line).
+YAML::Node unmarked(const YAML::Node& n) {
+  if (n.IsScalar()) return YAML::Node(n.Scalar());
+  YAML::Node out;
+  if (n.IsSequence())
+    for (const YAML::Node& e : n) out.push_back(unmarked(e));
+  else if (n.IsMap())
+    for (const auto& kv : n) out[unmarked(kv.first)] = unmarked(kv.second);
+  return out;
+}
+
+// Sets root[a][b]... = value for one "a.b...=value" override.
+void apply_override(YAML::Node root, const std::string& name, const std::string& kv) {
+  const auto eq = kv.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw DeckError(name, 0, 0, "", "--set '" + kv + "': expected key.path=value");
+  const std::string path = kv.substr(0, eq);
+  std::vector<std::string> keys;
+  for (std::size_t b = 0;;) {
+    const auto dot = path.find('.', b);
+    keys.push_back(path.substr(b, dot == std::string::npos ? std::string::npos : dot - b));
+    if (keys.back().empty())
+      throw DeckError(name, 0, 0, "", "--set '" + kv + "': empty key in the path");
+    if (dot == std::string::npos) break;
+    b = dot + 1;
+  }
+  YAML::Node value;
+  try {
+    value = unmarked(YAML::Load(kv.substr(eq + 1)));
+  } catch (const YAML::Exception& e) {
+    throw DeckError(name, 0, 0, path, "--set: the value is not YAML: " + e.msg);
+  }
+  YAML::Node node = root;
+  for (std::size_t k = 0; k < keys.size(); ++k) {
+    const std::string& key = keys[k];
+    const bool last = k + 1 == keys.size();
+    if (node.IsSequence()) {
+      const bool digits = key.find_first_not_of("0123456789") == std::string::npos;
+      const std::size_t at = digits && key.size() < 10 ? std::stoul(key) : node.size();
+      if (at >= node.size())
+        throw DeckError(name, 0, 0, path,
+                        "--set: '" + key + "' is not an index of that list (0 ... " +
+                            std::to_string(node.size()) + " - 1)");
+      if (last) {
+        node[at] = value;
+        return;
+      }
+      node.reset(node[at]);
+      continue;
+    }
+    if (!node.IsMap() && !node.IsNull())
+      throw DeckError(name, 0, 0, path, "--set: '" + key + "' is below a single value");
+    if (last) {
+      node[key] = value;
+      return;
+    }
+    if (!node[key]) node[key] = YAML::Node(YAML::NodeType::Map);
+    node.reset(node[key]);
+  }
+}
 }  // namespace
 
-Deck parse_deck(const std::string& text, const std::string& name) {
+Deck parse_deck(const std::string& text, const std::string& name,
+                const std::vector<std::string>& overrides) {
   // Every path out of the loader is a DeckError: a yaml-cpp exception that a section's own
   // checks did not turn into one still names the file and the line.
   try {
-    return parse_deck_sections(text, name);
+    return parse_deck_sections(text, name, overrides);
   } catch (const YAML::Exception& e) {
     throw DeckError(name, e.mark.is_null() ? 0 : e.mark.line + 1,
                     e.mark.is_null() ? 0 : e.mark.column + 1, "",
@@ -137,7 +201,8 @@ Deck parse_deck(const std::string& text, const std::string& name) {
 }
 
 namespace {
-Deck parse_deck_sections(const std::string& text, const std::string& name) {
+Deck parse_deck_sections(const std::string& text, const std::string& name,
+                         const std::vector<std::string>& overrides) {
   YAML::Node root;
   try {
     root = YAML::Load(text);
@@ -145,6 +210,8 @@ Deck parse_deck_sections(const std::string& text, const std::string& name) {
     throw DeckError(name, e.mark.line + 1, e.mark.column + 1, "",
                     "malformed YAML: " + e.msg + " (check indentation, colons and brackets)");
   }
+  if (root.IsMap())
+    for (const std::string& kv : overrides) apply_override(root, name, kv);
   if (!root.IsMap())
     throw DeckError(name, 0, 0, "", "a deck is a YAML mapping with sections model, material, "
                                     "discretization, ... (see docs/deck-reference.md)");
@@ -569,7 +636,7 @@ Deck parse_deck_sections(const std::string& text, const std::string& name) {
 }
 }  // namespace
 
-Deck load_deck(const std::string& path) {
+Deck load_deck(const std::string& path, const std::vector<std::string>& overrides) {
   // A deck is a small text file: a device, a pipe or a folder would be read without bound.
   constexpr std::uintmax_t kMaxDeckBytes = 16u << 20;
   std::error_code ec;
@@ -587,7 +654,7 @@ Deck load_deck(const std::string& path) {
   if (!in) throw DeckError(path, 0, 0, "", "cannot open the deck file");
   std::stringstream ss;
   ss << in.rdbuf();
-  return parse_deck(ss.str(), path);
+  return parse_deck(ss.str(), path, overrides);
 }
 
 }  // namespace periadapt

@@ -100,8 +100,12 @@ struct Deck {
 };
 
 // Reads and validates a deck. Throws DeckError (file, key, line, what is allowed).
-Deck load_deck(const std::string& path);
+// `overrides`: "key.path=value" pairs (command line --set) applied to the YAML before
+// validation, so they are checked like the deck's own keys; a path component that is a number
+// indexes a list (loads.0.value=[0, 1e6]); the value is YAML (a number, text, list or mapping).
+Deck load_deck(const std::string& path, const std::vector<std::string>& overrides = {});
 // Same, from text (tests); `name` stands for the file in messages.
-Deck parse_deck(const std::string& text, const std::string& name);
+Deck parse_deck(const std::string& text, const std::string& name,
+                const std::vector<std::string>& overrides = {});
 
 }  // namespace periadapt
