@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# The test suite under AddressSanitizer + UndefinedBehaviorSanitizer (gcc, -O1), in build-asan/.
+# Leaks are reported too; scripts/lsan.supp suppresses third-party ones only. The long fracture
+# validations are left to the optimized build (scripts/test.sh): under the sanitizers they would
+# take most of CI's time and exercise the same code as the medium ones that do run here.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DPERIADAPT_NATIVE=OFF -DPERIADAPT_BUILD_BENCH=OFF \
+  -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined" \
+  -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" > /dev/null
+cmake --build build-asan -j"$(nproc)" > build-asan/build.log 2>&1 || { tail -40 build-asan/build.log; exit 1; }
+export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
+export LSAN_OPTIONS="suppressions=$PWD/scripts/lsan.supp:print_suppressions=0"
+export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+export PERIADAPT_SANITIZE=1  # tests that cap the address space skip the cap (ASan reserves terabytes)
+ctest --test-dir build-asan --output-on-failure -j"$(nproc)" --timeout 900 \
+  -E "validation_(grid_orientation|pdro_sent|kalthoff_winkler)"
