@@ -28,6 +28,15 @@ const char* kPlate =
     "cracks: [{segment: [[0, 0.008], [0.0121, 0.008]]}]\n"
     "solver: {time_step: 5.0e-8, steps: 10}\n";
 
+// A 10 deg lattice cut by a horizontal pre-crack through the middle of a 40 x 20 mm plate.
+const char* kRotatedCrackedPlate =
+    "model: {dimension: 2, plane: stress}\n"
+    "material: {youngs_modulus: 72.0e9, density: 2440, fracture_energy: 135}\n"
+    "discretization: {spacing: 0.001, horizon_factor: 3, rotation_deg: 10, body: {box: {min: "
+    "[-0.02, -0.01], max: [0.02, 0.01]}}}\n"
+    "cracks: [{segment: [[-0.015, 0.0], [0.015, 0.0]]}]\n"
+    "solver: {time_step: 5.0e-8, steps: 10}\n";
+
 // A pre-cracked 40 mm x 20 mm glass plate pulled by edge tractions, with an adapt section.
 std::string cracked_plate_deck(double traction, const std::string& adapt, int steps) {
   const std::string t = std::to_string(traction);
@@ -245,13 +254,7 @@ TEST(Adapt, ChildrenAcrossAPreCrackTakeTheFieldOfTheirOwnFace) {
   // from their parent. With the faces pulled apart (u_y, v_y = +-1 above / below the line) each
   // child must carry its own face's field; anchored at the parent it got the other face's and
   // tore its bonds apart on the next step. Momentum is kept to round-off either way.
-  Model m = build_model(test::deck_from(
-      "model: {dimension: 2, plane: stress}\n"
-      "material: {youngs_modulus: 72.0e9, density: 2440, fracture_energy: 135}\n"
-      "discretization: {spacing: 0.001, horizon_factor: 3, rotation_deg: 10, body: {box: {min: "
-      "[-0.02, -0.01], max: [0.02, 0.01]}}}\n"
-      "cracks: [{segment: [[-0.015, 0.0], [0.015, 0.0]]}]\n"
-      "solver: {time_step: 5.0e-8, steps: 10}\n"));
+  Model m = build_model(test::deck_from(kRotatedCrackedPlate));
   NodeSet& ns = m.nodes;
   for (std::size_t i = 0; i < ns.size(); ++i) {
     const double side = ns.x[1][i] > 0 ? 1.0 : -1.0;
@@ -773,13 +776,7 @@ TEST(Adapt, ReanchoredChildrenKeepMomentumInAnUnbalancedField) {
   // 0.5 and 0.1 along) and the parent block sits off the crack line, so children re-anchored
   // across the crack take a velocity their parents did not have. The uniform shift of the new
   // nodes must give back the event's momentum exactly (to round-off of sum m |v|).
-  Model m = build_model(test::deck_from(
-      "model: {dimension: 2, plane: stress}\n"
-      "material: {youngs_modulus: 72.0e9, density: 2440, fracture_energy: 135}\n"
-      "discretization: {spacing: 0.001, horizon_factor: 3, rotation_deg: 10, body: {box: {min: "
-      "[-0.02, -0.01], max: [0.02, 0.01]}}}\n"
-      "cracks: [{segment: [[-0.015, 0.0], [0.015, 0.0]]}]\n"
-      "solver: {time_step: 5.0e-8, steps: 10}\n"));
+  Model m = build_model(test::deck_from(kRotatedCrackedPlate));
   NodeSet& ns = m.nodes;
   for (std::size_t i = 0; i < ns.size(); ++i) {
     const bool up = ns.x[1][i] > 0;
