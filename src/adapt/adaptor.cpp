@@ -75,7 +75,10 @@ std::vector<std::uint32_t> Adaptor::parents_for(const std::vector<std::uint32_t>
                                                 const std::vector<char>* refinable) const {
   if (ids.empty()) return {};
   std::vector<char> own;
-  if (!refinable) own = refinable_nodes(m_, spec_), refinable = &own;
+  if (!refinable) {
+    own = refinable_nodes(m_, spec_);
+    refinable = &own;
+  }
   std::vector<std::uint32_t> parents = apply_visibility(m_, ids, *refinable, spec_.visibility_factor);
   if (spec_.refine_loads) add_loaded_neighbours(m_, *refinable, parents);
   return parents;
@@ -189,7 +192,6 @@ bool Adaptor::step() {
   // old, as are its forces, and the rows idle at the check step need no pass of their own.
   const bool check_step = (vv_.step_count() + 1) % spec_.check_every == 0;
   const bool check = spec_.energy_fraction && check_step;
-  const bool stretch_check = check_step;
   if (check && !vv_.multirate()) vv_.request_energy_at(vv_.step_count() + 1);
   if (spec_.damage_trigger) {
     vv_.set_undo(true);
@@ -221,7 +223,7 @@ bool Adaptor::step() {
   } else if (!vv_.step()) {
     return false;
   }
-  if (spec_.stretch_fraction && stretch_check) {
+  if (spec_.stretch_fraction && check_step) {
     const std::vector<char>& refinable = this->refinable();
     const auto ids = stretch_trigger(m_, spec_, *spec_.stretch_fraction, refinable);
     refine(parents_for(ids, &refinable), ids.size(), "stretch");
