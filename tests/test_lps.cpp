@@ -2,6 +2,8 @@
 // the lateral contraction of a plate in tension (which the bond-based model cannot give).
 #include <gtest/gtest.h>
 
+#include <fmt/core.h>
+
 #include <cmath>
 
 #include "analysis/energy.hpp"
@@ -222,4 +224,83 @@ TEST(Lps, GaussianPulseThroughARefinedHalfKeepsItsEnergyBounded) {
   EXPECT_LT(dual.worst_drift, 0.005);
   RecordProperty("energy_drift_plain", std::to_string(plain.worst_drift));
   RecordProperty("energy_drift_dual", std::to_string(dual.worst_drift));
+}
+
+namespace {
+
+double madenci_oterkus_s0(const Case& c, double E, double G0, double delta) {
+  const double mu = E / (2 * (1 + c.nu)), pi = M_PI;
+  if (c.dim == 3) {
+    const double K = E / (3 * (1 - 2 * c.nu));
+    return std::sqrt(G0 / ((3 * mu + 81.0 / 256.0 * (K - 5 * mu / 3)) * delta));
+  }
+  const double kappa = std::string(c.plane) == "stress" ? E / (2 * (1 - c.nu))
+                                                        : E / (2 * (1 + c.nu) * (1 - 2 * c.nu));
+  return std::sqrt(G0 / ((6 * mu / pi + 16 / (9 * pi * pi) * (kappa - 2 * mu)) * delta));
+}
+
+}  // namespace
+
+// The critical stretch a deck's fracture energy gives every LPS node: Madenci & Oterkus (2014),
+// w = 1, G0 = [3 mu + (3/4)^4 (K - 5 mu / 3)] delta s0^2 (3D) and
+// G0 = [6 mu / pi + 16 / (9 pi^2) (kappa - 2 mu)] delta s0^2 (2D). At the bond-based Poisson
+// ratio (3D 1/4, plane strain 1/4, plane stress 1/3) the dilatation term vanishes and s0 is the
+// PMB one (thesis Eq. 2.15), so there the two models dissipate the same G0; the other ratios
+// check the dilatation coefficient.
+TEST(Lps, CriticalStretchFromFractureEnergyMatchesMadenciOterkus) {
+  const double E = 70e9, G0 = 350, delta = 3 * 0.01, pi = M_PI;
+  auto deck_s0 = [&](const Case& c) {
+    std::string yaml = "model: {dimension: " + std::to_string(c.dim) +
+                       (c.dim == 2 ? std::string(", plane: ") + c.plane : std::string()) +
+                       ", formulation: lps}\n"
+                       "material: {youngs_modulus: 70.0e9, density: 2700, fracture_energy: 350, "
+                       "poisson_ratio: " + fmt::format("{:.17g}", c.nu) + "}\n";
+    const std::string box = c.dim == 2 ? "{min: [0, 0], max: [0.1, 0.1]}"
+                                       : "{min: [0, 0, 0], max: [0.1, 0.1, 0.1]}";
+    yaml += "discretization: {spacing: 0.01, horizon_factor: 3.0, body: {box: " + box +
+            "}}\nsolver: {steps: 1}\n";
+    const Model md = build_model(test::deck_from(yaml));
+    for (std::size_t i = 1; i < md.nodes.size(); ++i)
+      EXPECT_EQ(md.nodes.critical_stretch[i], md.nodes.critical_stretch[0]);
+    return md.nodes.critical_stretch[0];
+  };
+  for (const Case& c : {Case{3, "", 0.1}, Case{3, "", 0.35}, Case{2, "stress", 0.0},
+                        Case{2, "stress", 0.2}, Case{2, "strain", 0.35}, Case{2, "strain", 0.45}}) {
+    SCOPED_TRACE(std::to_string(c.dim) + "D " + c.plane + " nu " + std::to_string(c.nu));
+    EXPECT_NEAR(deck_s0(c) / madenci_oterkus_s0(c, E, G0, delta), 1.0, 1e-12);
+  }
+  EXPECT_NEAR(deck_s0({3, "", 0.25}) / std::sqrt(5 * G0 / (6 * E * delta)), 1.0, 1e-12);
+  EXPECT_NEAR(deck_s0({2, "strain", 0.25}) / std::sqrt(5 * pi * G0 / (12 * E * delta)), 1.0, 1e-12);
+  EXPECT_NEAR(deck_s0({2, "stress", 1.0 / 3.0}) / std::sqrt(4 * pi * G0 / (9 * E * delta)), 1.0,
+              1e-12);
+}
+
+// Through the force kernel: under a uniform isotropic expansion every bond has the stretch eps,
+// so an LPS body with fracture energy G0 keeps all its bonds at eps = 0.999 s0 and loses all of
+// them at 1.001 s0, s0 from the Madenci-Oterkus relation (2D plane stress nu = 0.2 and 3D
+// nu = 0.1, where the dilatation term is not zero).
+TEST(Lps, IsotropicExpansionBreaksEveryBondAtTheFractureEnergysCriticalStretch) {
+  for (const Case& c : {Case{2, "stress", 0.2}, Case{3, "", 0.1}}) {
+    SCOPED_TRACE(std::to_string(c.dim) + "D");
+    for (const double f : {0.999, 1.001}) {
+      std::string yaml = "model: {dimension: " + std::to_string(c.dim) +
+                         (c.dim == 2 ? std::string(", plane: ") + c.plane : std::string()) +
+                         ", formulation: lps}\n"
+                         "material: {youngs_modulus: 70.0e9, density: 2700, fracture_energy: 350, "
+                         "poisson_ratio: " + fmt::format("{:.17g}", c.nu) + "}\n";
+      const std::string box = c.dim == 2 ? "{min: [0, 0], max: [0.1, 0.1]}"
+                                         : "{min: [0, 0, 0], max: [0.06, 0.06, 0.06]}";
+      yaml += "discretization: {spacing: 0.01, horizon_factor: 3.0, body: {box: " + box +
+              "}}\nsolver: {steps: 1}\n";
+      Model md = build_model(test::deck_from(yaml));
+      NodeSet& ns = md.nodes;
+      const double eps = f * madenci_oterkus_s0(c, 70e9, 350, 0.03);
+      for (std::size_t i = 0; i < ns.size(); ++i) {
+        for (int d = 0; d < c.dim; ++d) ns.u[d][i] = eps * ns.x[d][i];
+        ns.sync_current(i);
+      }
+      const std::size_t broken = internal_forces(md, true);
+      EXPECT_EQ(broken, f < 1 ? 0 : md.bonds.num_bonds());
+    }
+  }
 }
