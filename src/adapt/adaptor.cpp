@@ -1,5 +1,7 @@
 #include "adapt/adaptor.hpp"
 
+#include "io/binary_archive.hpp"
+
 #include <fmt/core.h>
 
 #include <algorithm>
@@ -248,6 +250,56 @@ bool Adaptor::step() {
     refine(parents_for(ids, coarsened ? nullptr : &refinable), ids.size(), "energy");
   }
   return true;
+}
+
+void Adaptor::save_state(ArchiveWriter& w) const {
+  w.tag("ADPT");
+  w.put(std::uint64_t{events_.size()});
+  for (const RefinementEvent& e : events_) {
+    w.put(e.step);
+    w.put(e.time);
+    w.put(e.trigger);
+    w.put(std::uint64_t{e.identified});
+    w.put(std::uint64_t{e.stats.parents});
+    w.put(std::uint64_t{e.stats.children});
+    w.put(std::uint64_t{e.stats.reanchored});
+    w.put(e.stats.momentum_before);
+    w.put(e.stats.momentum_after);
+    w.put(e.stats.kinetic_before);
+    w.put(e.stats.kinetic_after);
+    w.put(e.stats.momentum_scale);
+    w.put(e.stats.seconds);
+    w.put(std::uint64_t{e.active_nodes});
+    w.put(std::uint64_t{e.bonds});
+    w.put(e.dt_stable);
+  }
+}
+
+void Adaptor::restore_state(ArchiveReader& r) {
+  r.tag("ADPT");
+  const auto n = r.get<std::uint64_t>();
+  events_.clear();
+  for (std::uint64_t k = 0; k < n; ++k) {
+    RefinementEvent e;
+    r.get(e.step);
+    r.get(e.time);
+    r.get(e.trigger);
+    e.identified = r.get<std::uint64_t>();
+    e.stats.parents = r.get<std::uint64_t>();
+    e.stats.children = r.get<std::uint64_t>();
+    e.stats.reanchored = r.get<std::uint64_t>();
+    r.get(e.stats.momentum_before);
+    r.get(e.stats.momentum_after);
+    r.get(e.stats.kinetic_before);
+    r.get(e.stats.kinetic_after);
+    r.get(e.stats.momentum_scale);
+    r.get(e.stats.seconds);
+    e.active_nodes = r.get<std::uint64_t>();
+    e.bonds = r.get<std::uint64_t>();
+    r.get(e.dt_stable);
+    events_.push_back(std::move(e));
+  }
+  refinable_valid_ = false;
 }
 
 }  // namespace periadapt

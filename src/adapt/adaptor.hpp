@@ -13,6 +13,9 @@
 
 namespace periadapt {
 
+class ArchiveWriter;
+class ArchiveReader;
+
 struct RefinementEvent {
   long step = 0;
   double time = 0;
@@ -38,6 +41,9 @@ class Adaptor {
   const std::vector<RefinementEvent>& events() const { return events_; }
   std::size_t nodes_added() const;
   std::size_t nodes_removed() const;  // children returned to their parents by coarsening
+  // Checkpoints: the event log (the triggers keep no state between steps).
+  void save_state(ArchiveWriter& w) const;
+  void restore_state(ArchiveReader& r);
 
  private:
   // Parents the identified nodes ask for (visibility applied); empty: nothing to refine.

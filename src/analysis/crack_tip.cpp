@@ -1,5 +1,7 @@
 #include "analysis/crack_tip.hpp"
 
+#include "io/binary_archive.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -212,6 +214,40 @@ double CrackTipTracker::max_speed() const {
   double m = 0;
   for (const auto& w : window_speeds_) m = std::max(m, w[1]);
   return m;
+}
+
+void CrackTipTracker::save_state(ArchiveWriter& w) const {
+  w.tag("TIPS");
+  w.put(samples_);
+  w.put(window_speeds_);
+  w.put(window_start_);
+  w.put(current_speed_);
+  w.put(initiation_);
+  w.put(first_advance_);
+  w.put(start_advance_);
+  w.put(branching_time_);
+  w.put(branching_point_);
+  w.put(separation_time_);
+  w.put(separation_point_);
+  w.put(last_crack_);
+  w.put(linked_);
+}
+
+void CrackTipTracker::restore_state(ArchiveReader& r) {
+  r.tag("TIPS");
+  r.get(samples_);
+  r.get(window_speeds_);
+  r.get(window_start_);
+  r.get(current_speed_);
+  r.get(initiation_);
+  r.get(first_advance_);
+  r.get(start_advance_);
+  r.get(branching_time_);
+  r.get(branching_point_);
+  r.get(separation_time_);
+  r.get(separation_point_);
+  r.get(last_crack_);
+  r.get(linked_);
 }
 
 }  // namespace periadapt

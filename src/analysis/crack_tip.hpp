@@ -13,6 +13,9 @@
 
 namespace periadapt {
 
+class ArchiveWriter;
+class ArchiveReader;
+
 struct CrackTipOptions {
   double threshold = 0.35;
   Vec3 origin{0, 0, 0};      // initial tip (pre-crack end)
@@ -62,6 +65,9 @@ class CrackTipTracker {
   std::optional<double> mirror_asymmetry(const NodeSet& nodes) const;
   double mean_speed() const;   // mean over windows after initiation while the tip moves
   double max_speed() const;
+  // Checkpoints: everything observed so far.
+  void save_state(ArchiveWriter& w) const;
+  void restore_state(ArchiveReader& r);
 
  private:
   void detect_branching(const NodeSet& nodes, const std::vector<std::uint32_t>& crack, double t);

@@ -160,6 +160,9 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 4096));
   run->add_flag("--quiet", quiet, "no progress output");
   std::vector<std::string> overrides;
+  std::string restart_from;
+  run->add_option("--restart", restart_from,
+                  "continue from a checkpoint (a checkpoint.bin, or the output folder holding it)");
   run->add_option("--set", overrides,
                   "override a deck key, checked like the deck's own: key.path=value (repeatable; "
                   "a number indexes a list, e.g. loads.0.value=[0,2e7])");
@@ -243,6 +246,7 @@ int main(int argc, char** argv) {
     RunOptions ro;
     if (!out.empty()) ro.out_dir = out;
     ro.quiet = quiet;
+    if (!restart_from.empty()) ro.restart = restart_from;
     const Deck dk = load_deck(deck, overrides);
     // One run per output folder at a time; the lock goes with the process.
     run_dir = ro.out_dir ? *ro.out_dir : dk.output.directory;
@@ -250,6 +254,9 @@ int main(int argc, char** argv) {
     std::filesystem::create_directories(run_dir, ec);
     if (ec) throw OutputError("cannot create the output folder " + run_dir + ": " + ec.message());
     const OutputFolderLock lock(run_dir);
+    if (ro.restart && dk.solver != Deck::SolverType::Explicit)
+      throw DeckError(deck, 0, 0, "--restart",
+                      "restarts are for explicit runs; static and relaxation runs start over");
     if (dk.solver == Deck::SolverType::Relaxation) {
       const RunResult r = run_relaxation(dk, ro);
       fmt::print("done: dynamic relaxation, {} load steps, {} iterations, {} bonds broken\n",
@@ -269,9 +276,10 @@ int main(int argc, char** argv) {
     const auto& s = r.summary;
     if (r.interrupted) {
       fmt::print(stderr,
-                 "interrupted by signal {} after step {}: history, snapshots so far and "
-                 "summary.json (status interrupted) are in {}\n",
-                 r.interrupted, r.steps_done, run_dir);
+                 "interrupted by signal {} after step {}: history, snapshots so far, "
+                 "summary.json (status interrupted) and checkpoint.bin are in {}; continue with "
+                 "periadapt run {} --restart {}\n",
+                 r.interrupted, r.steps_done, run_dir, deck, run_dir);
       return 128 + r.interrupted;
     }
     if (r.diverged) {

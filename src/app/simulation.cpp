@@ -9,6 +9,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <filesystem>
 #include <fstream>
@@ -17,6 +18,9 @@
 #include <fmt/format.h>
 
 #include "analysis/crack_tip.hpp"
+#include "app/checkpoint_file.hpp"
+#include "io/binary_archive.hpp"
+#include "model/model_state.hpp"
 #include "analysis/energy.hpp"
 #include "analysis/refinement_coverage.hpp"
 #include "app/interrupt.hpp"
@@ -32,6 +36,25 @@
 namespace periadapt {
 
 namespace {
+// A fresh run into a used folder: the files of the earlier run that this one might not
+// overwrite (more snapshots or pictures, a refinement log, a checkpoint) would mix with its own.
+void remove_earlier_run_outputs(const std::string& dir) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(dir, ec)) {
+    const std::string name = e.path().filename().string();
+    auto starts = [&](const char* p) { return name.rfind(p, 0) == 0; };
+    auto ends = [&](const char* q) {
+      const std::size_t n = std::strlen(q);
+      return name.size() >= n && name.compare(name.size() - n, n, q) == 0;
+    };
+    if ((starts("snapshot_") && ends(".vtu")) || (starts("damage_") && ends("us.png")) ||
+        name == kCheckpointName || name == "refinement.csv" || name == "crack_speed.csv" ||
+        name == "crack_speed.png")
+      fs::remove(e.path(), ec);
+  }
+}
+
 std::size_t active_count(const NodeSet& ns) {
   std::size_t n = 0;
   for (auto f : ns.flags) n += (f & kActive) != 0;
@@ -96,10 +119,28 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
   const double t_setup = std::chrono::duration<double>(clock::now() - t_start).count();
   const TimeStepChoice ts = choose_time_step(dk, m);
   const NodeSet& ns = m.nodes;
-  const std::size_t nodes0 = ns.size();
+  std::size_t nodes0 = ns.size();
 
   const std::string dir = opt.out_dir ? *opt.out_dir : dk.output.directory;
   if (opt.write_files) std::filesystem::create_directories(dir);
+  // A restart reads its checkpoint before anything is written (a mismatch changes nothing).
+  std::optional<Checkpoint> restart;
+  std::optional<ArchiveReader> state;
+  if (opt.restart) {
+    restart = read_checkpoint(*opt.restart, dk);
+    state.emplace(restart->payload, restart->path);
+    try {
+      restore_model_state(*state, m);
+    } catch (const ArchiveError& e) {
+      throw DeckError(restart->path, 0, 0, "--restart", e.what());
+    }
+    if (restart->info.threads != omp_get_max_threads() && !opt.quiet)
+      fmt::print("note: the checkpoint was written with {} threads, this run has {}: it continues "
+                 "correctly, but not bit for bit\n",
+                 restart->info.threads, omp_get_max_threads());
+  } else if (opt.write_files) {
+    remove_earlier_run_outputs(dir);
+  }
   if (!opt.quiet) {
     fmt::print("PeriAdapt: {} nodes, {} bonds ({} cut by pre-cracks), {}D {}{}, c0 = {:.4e}, "
                "s0 = {:.4e}\n",
@@ -154,16 +195,17 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
   if (opt.write_files) {
     vtu = std::make_unique<VtuSeries>(dir, "snapshot");
     hist = StreamedOutput(dir + "/history.csv");
-    hist << "step,time_s,kinetic_energy_J,strain_energy_J,external_work_J,energy_balance_J,"
-            "broken_bonds,damaged_nodes,damage_sum,tip_x_m,tip_y_m,tip_z_m,tip_speed_m_s,nodes,bonds,"
-            "wall_time_s\n";
+    if (!restart)
+      hist << "step,time_s,kinetic_energy_J,strain_energy_J,external_work_J,energy_balance_J,"
+              "broken_bonds,damaged_nodes,damage_sum,tip_x_m,tip_y_m,tip_z_m,tip_speed_m_s,nodes,"
+              "bonds,wall_time_s\n";
   }
   std::vector<double> W;
   std::vector<std::string> pngs;
 
   VelocityVerlet vv(m, ts.dt);
   if (dk.multirate) vv.set_multirate(dk.safety, dk.multirate_ratio);
-  vv.initialize();
+  if (!restart) vv.initialize();
   double solver_seconds = 0;
   std::size_t damaged_nodes = 0;
   double damage_sum = 0;  // total damage over active nodes (Stewart & Jeon Fig. 9a)
@@ -171,7 +213,8 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
   double K = 0, U = 0;
 
   double observe_seconds = 0, output_seconds = 0;  // history/tracker sampling; VTU and PNG files
-  // `last`: the run stops after this step (interrupted): history row, snapshot and picture of it.
+  // `last`: the run stops after this step (interrupted): the history row, snapshot and picture
+  // of it that the schedule did not give already.
   auto observe = [&](long step, bool last = false) {
     const auto t_obs = clock::now();
     struct AddElapsed {
@@ -180,9 +223,11 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
       ~AddElapsed() { acc += std::chrono::duration<double>(clock::now() - t0).count(); }
     } obs_timer{t_obs, observe_seconds};
     const double t = vv.time();
-    const bool do_hist = step % dk.output.history_every == 0 || step == ts.steps || last;
-    const bool do_vtu = vtu && (vtu_steps.count(step) || last);
-    const bool do_png = opt.write_files && (png_steps.count(step) || last);
+    const bool hist_due = step % dk.output.history_every == 0 || step == ts.steps;
+    const bool vtu_due = vtu_steps.count(step) > 0, png_due = png_steps.count(step) > 0;
+    const bool do_hist = last ? !hist_due : hist_due;
+    const bool do_vtu = vtu && (last ? !vtu_due : vtu_due);
+    const bool do_png = opt.write_files && (last ? !png_due : png_due);
     if (!(do_hist || do_vtu || do_png)) return;
     if (do_hist || do_vtu) {
       // From the step's own force pass when it was asked for (see the loop), else a bond pass.
@@ -237,9 +282,10 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
     adaptor = std::make_unique<Adaptor>(m, vv, dk.adapt);
     if (opt.write_files) {
       refinement_log = StreamedOutput(dir + "/refinement.csv");
-      refinement_log << "step,time_s,trigger,identified,parents,children,active_nodes,bonds,"
-                        "momentum_change_rel,kinetic_before_J,kinetic_after_J,dt_stable_s,"
-                        "event_wall_s\n";
+      if (!restart)
+        refinement_log << "step,time_s,trigger,identified,parents,children,active_nodes,bonds,"
+                          "momentum_change_rel,kinetic_before_J,kinetic_after_J,dt_stable_s,"
+                          "event_wall_s\n";
     }
   }
   auto log_events = [&]() {
@@ -262,9 +308,91 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
     }
   };
 
-  observe(0);
+  // Checkpoints: the state after a step and its scheduled outputs; the run's own files so far
+  // travel inside, so a restart rewrites them as they were at that step.
+  auto save_run_state = [&](ArchiveWriter& w) {
+    save_model_state(w, m);
+    vv.save_state(w);
+    w.put<std::uint8_t>(adaptor != nullptr);
+    if (adaptor) adaptor->save_state(w);
+    tracker.save_state(w);
+    w.tag("OUTS");
+    w.put(std::uint64_t{nodes0});
+    w.put(hist.is_open() ? hist.text_so_far() : std::string());
+    w.put(refinement_log.is_open() ? refinement_log.text_so_far() : std::string());
+    w.put(std::uint64_t{events_logged});
+    const auto& entries = vtu ? vtu->entries() : std::vector<std::pair<double, std::string>>{};
+    w.put(std::uint64_t{entries.size()});
+    for (const auto& [t, f] : entries) {
+      w.put(t);
+      w.put(f);
+    }
+    w.put(std::uint64_t{pngs.size()});
+    for (const std::string& p : pngs) w.put(std::filesystem::path(p).filename().string());
+    w.put(last_tip);
+    w.put(K);
+    w.put(U);
+    w.put(std::uint64_t{damaged_nodes});
+    w.put(damage_sum);
+    w.put(solver_seconds);
+    w.put(observe_seconds);
+    w.put(output_seconds);
+    w.put(adapt_seconds);
+  };
+  auto restore_run_state = [&](ArchiveReader& r) {
+    vv.restore_state(r);
+    if (r.get<std::uint8_t>() != (adaptor != nullptr))
+      throw ArchiveError("the checkpoint and the deck differ in adapt");
+    if (adaptor) adaptor->restore_state(r);
+    tracker.restore_state(r);
+    r.tag("OUTS");
+    nodes0 = r.get<std::uint64_t>();
+    const auto history = r.get<std::string>(), refinements = r.get<std::string>();
+    if (hist.is_open()) hist << history;
+    if (refinement_log.is_open()) refinement_log << refinements;
+    events_logged = r.get<std::uint64_t>();
+    std::vector<std::pair<double, std::string>> entries(r.get<std::uint64_t>());
+    for (auto& [t, f] : entries) {
+      r.get(t);
+      r.get(f);
+    }
+    if (vtu) vtu->resume(std::move(entries));
+    pngs.resize(r.get<std::uint64_t>());
+    for (std::string& p : pngs) p = dir + "/" + r.get<std::string>();
+    r.get(last_tip);
+    r.get(K);
+    r.get(U);
+    damaged_nodes = r.get<std::uint64_t>();
+    r.get(damage_sum);
+    r.get(solver_seconds);
+    r.get(observe_seconds);
+    r.get(output_seconds);
+    r.get(adapt_seconds);
+    if (!r.at_end()) throw ArchiveError("the checkpoint has data past its last section");
+  };
+  auto write_run_checkpoint = [&]() {
+    ArchiveWriter w;
+    save_run_state(w);
+    CheckpointInfo info{build_id(), deck_fingerprint(dk), dk.file, omp_get_max_threads(),
+                        vv.step_count(), vv.time()};
+    write_checkpoint(dir + "/" + kCheckpointName, info, w.bytes());
+  };
+
+  if (restart) {
+    try {
+      restore_run_state(*state);
+    } catch (const ArchiveError& e) {
+      throw DeckError(restart->path, 0, 0, "--restart", e.what());
+    }
+    if (!opt.quiet)
+      fmt::print("restarted from {} at step {} (t = {:.6e} s)\n", restart->path, vv.step_count(),
+                 vv.time());
+  } else {
+    observe(0);
+  }
+  const long first_step = vv.step_count() + 1;
   Progress bar(ts.steps, opt.quiet);
-  for (long s = 1; s <= ts.steps; ++s) {
+  for (long s = first_step; s <= ts.steps; ++s) {
     const auto t0 = clock::now();
     if (s % dk.output.history_every == 0 || s == ts.steps || (vtu && vtu_steps.count(s)))
       vv.request_energy_at(s);
@@ -282,7 +410,11 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
       break;
     }
     res.interrupted = interrupt_signal();
-    observe(s, res.interrupted != 0);
+    observe(s);
+    if (opt.write_files && (res.interrupted || (dk.output.checkpoint_every > 0 &&
+                                                s % dk.output.checkpoint_every == 0 && s < ts.steps)))
+      write_run_checkpoint();
+    if (res.interrupted) observe(s, true);
     bar.update(s, track && tracker.initiation_time()
                       ? fmt::format("tip v = {:.0f} m/s", tracker.current_speed())
                       : "");
@@ -297,6 +429,8 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
   nlohmann::json& j = res.summary;
   j["deck"] = dk.file;
   j["status"] = res.diverged ? "diverged" : res.interrupted ? "interrupted" : "completed";
+  if (restart) j["restarted_from_step"] = first_step - 1;
+  if (res.interrupted && opt.write_files) j["checkpoint"] = dir + "/" + kCheckpointName;
   if (res.interrupted) {
     j["interrupted_by_signal"] = res.interrupted;
     j["steps_done"] = res.steps_done;

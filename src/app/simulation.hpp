@@ -14,6 +14,8 @@ struct RunOptions {
   std::optional<std::string> out_dir;  // overrides output.directory
   bool write_files = true;
   bool quiet = false;
+  // Continue from this checkpoint (a checkpoint.bin, or the folder holding it).
+  std::optional<std::string> restart;
 };
 
 struct RunResult {

@@ -7,6 +7,8 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
 namespace periadapt {
 
@@ -67,6 +69,15 @@ StreamedOutput& StreamedOutput::operator<<(const std::string& text) {
   out_ << text;
   if (!out_) throw OutputError("cannot write " + part_ + ": " + reason() + " (disk full?)");
   return *this;
+}
+
+std::string StreamedOutput::text_so_far() {
+  out_.flush();
+  if (!out_) throw OutputError("cannot write " + part_ + ": " + reason() + " (disk full?)");
+  std::ifstream in(part_, std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) throw OutputError("cannot read back " + part_ + ": " + reason());
+  return text;
 }
 
 void StreamedOutput::finish() {

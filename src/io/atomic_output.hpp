@@ -30,6 +30,8 @@ class StreamedOutput {
   StreamedOutput() = default;
   explicit StreamedOutput(std::string path);
   bool is_open() const { return out_.is_open(); }
+  // Everything written so far (a checkpoint keeps it; a restart writes it first).
+  std::string text_so_far();
   StreamedOutput& operator<<(const std::string& text);
   void finish();
   const std::string& path() const { return path_; }

@@ -217,6 +217,17 @@ Deck parse_deck_sections(const std::string& text, const std::string& name,
                                     "discretization, ... (see docs/deck-reference.md)");
   Deck dk;
   dk.file = name;
+  {
+    // What a checkpoint must agree with: the deck without its output section and run length
+    // (a restart may write elsewhere or run longer), comments and layout aside.
+    YAML::Node physics = YAML::Clone(root);
+    physics.remove("output");
+    if (const YAML::Node& cp = physics; cp["solver"] && cp["solver"].IsMap()) {
+      physics["solver"].remove("end_time");
+      physics["solver"].remove("steps");
+    }
+    dk.physics_text = YAML::Dump(physics);
+  }
   Section top(root, "", name);
 
   // --- model
@@ -605,6 +616,9 @@ Deck parse_deck_sections(const std::string& text, const std::string& name,
     }));
     out.history_every = o->integer("history_every", 10, [](long v) {
       return v >= 1 ? std::string() : std::string("must be >= 1");
+    });
+    out.checkpoint_every = o->integer("checkpoint_every", 0, [](long v) {
+      return v >= 0 ? std::string() : std::string("must be >= 0 (0: no periodic checkpoints)");
     });
     if (o->has("png_times")) out.png_times = o->numbers("png_times", 1, 1000);
     out.png_width = static_cast<int>(o->integer("png_width", 1200, [](long v) {

@@ -37,6 +37,7 @@ struct OutputSpec {
   std::string directory = "out";
   int vtu_count = 10;                 // snapshots over the run (plus the initial state)
   long history_every = 10;            // steps between history rows and tip samples
+  long checkpoint_every = 0;          // steps between checkpoints (0: only on SIGINT/SIGTERM)
   std::vector<double> png_times;      // damage pictures at these times (end time always)
   int png_width = 1200;
   bool vtu = true;
@@ -52,6 +53,7 @@ struct OutputSpec {
 
 struct Deck {
   std::string file;
+  std::string physics_text;  // the deck's YAML without output and run length (checkpoint match)
   // model
   int dim = 2;
   PlaneCondition plane = PlaneCondition::None;

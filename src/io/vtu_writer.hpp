@@ -22,6 +22,9 @@ class VtuSeries {
   // Writes the active nodes' positions (reference configuration) and fields; returns the path.
   std::string write(double time, const NodeSet& nodes, const std::vector<PointField>& fields);
   const std::string& pvd_path() const { return pvd_; }
+  // The snapshots written so far (time, file name); a restart continues the series after them.
+  const std::vector<std::pair<double, std::string>>& entries() const { return entries_; }
+  void resume(std::vector<std::pair<double, std::string>> entries) { entries_ = std::move(entries); }
 
  private:
   void write_pvd() const;

@@ -11,6 +11,8 @@
 namespace periadapt {
 
 struct StepArrays;
+class ArchiveWriter;
+class ArchiveReader;
 
 struct DivergenceError {
   std::size_t node;
@@ -25,6 +27,9 @@ class VelocityVerlet {
 
   // Computes forces and accelerations at the current state (call once before stepping).
   void initialize();
+  // Checkpoints: the whole integrator state between two steps (restore replaces initialize()).
+  void save_state(ArchiveWriter& w) const;
+  void restore_state(ArchiveReader& r);
   // Advances one step. Returns false and fills `divergence()` if a non-finite or runaway
   // displacement appears; the model then holds the state of the failed step.
   bool step();
