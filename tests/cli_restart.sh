@@ -53,7 +53,7 @@ PY
 
 # Waits until the run has written history rows past `frac` of its steps (or has ended).
 wait_for_step() {  # pid, folder, step
-  for _ in $(seq 600); do
+  for _ in $(seq 3000); do
     kill -0 "$1" 2> /dev/null || return
     local last
     last=$(tail -n 1 "$2/history.csv.part" 2> /dev/null | cut -d, -f1)
@@ -93,7 +93,7 @@ for case in uniform adaptive; do
   "$bin" run "$deck" --out "$out" --quiet --threads $threads \
     --set output.checkpoint_every=$every > "$tmp/$case-kill.log" 2>&1 &
   pid=$!
-  for _ in $(seq 1000); do [[ -s $out/checkpoint.bin ]] && break; kill -0 $pid 2> /dev/null || break; sleep 0.01; done
+  for _ in $(seq 6000); do [[ -s $out/checkpoint.bin ]] && break; kill -0 $pid 2> /dev/null || break; sleep 0.01; done
   kill -KILL $pid 2> /dev/null; wait $pid 2> /dev/null
   if [[ ! -s $out/checkpoint.bin ]]; then
     bad "$case SIGKILL: no periodic checkpoint"
