@@ -184,3 +184,106 @@ TEST(DeckErrors, CommandLineOverridesAreCheckedLikeTheDecksOwnKeys) {
   EXPECT_TRUE(contains(expect_error_with(kGood, {"cracks.3.segment=[]"}), "not an index"));
   EXPECT_TRUE(contains(expect_error_with(kGood, {"spacing"}), "expected key.path=value"));
 }
+
+// Every check of the loader, one row each: a valid deck broken by --set overrides must be refused
+// with the row's key named and its reason given (and the unbroken deck must load).
+TEST(DeckErrors, EveryLoaderCheckRefusesItsCaseNamingTheKey) {
+  const std::string base =
+      "model: {dimension: 2, plane: stress, thickness: 0.01}\n"
+      "material: {youngs_modulus: 72.0e9, density: 2440, fracture_energy: 135}\n"
+      "discretization: {spacing: 0.001, horizon_factor: 3, body: {box: {min: [0, 0], max: [0.1, 0.04]}}}\n"
+      "cracks:\n  - segment: [[0, 0.02], [0.05, 0.02]]\n"
+      "loads:\n  - {name: top, type: traction, region: {box: {min: [0, 0.039], max: [0.1, 0.04]}},"
+      " value: [0, 1.0e6]}\n"
+      "boundary_conditions:\n  - {name: left, region: {box: {min: [0, 0], max: [0.001, 0.04]}},"
+      " velocity: [0, 0]}\n"
+      "damage: {no_fail: [{box: {min: [0, 0.038], max: [0.1, 0.04]}}]}\n"
+      "solver: {end_time: 1.0e-6}\n"
+      "output: {directory: out, crack_tip: {threshold: 0.35}}\n";
+  ASSERT_NO_THROW(parse_deck(base, "base.yaml"));
+  struct Row {
+    std::vector<std::string> set;
+    const char* key;      // named in the message
+    const char* because;  // part of the reason
+  };
+  const std::vector<Row> rows = {
+      {{"model.dimension=4"}, "model.dimension", "1, 2 or 3"},
+      {{"model.plane=axisymmetric"}, "model.plane", "allowed"},
+      {{"model.thickness=-1"}, "model.thickness", ""},
+      {{"model.formulation=state"}, "model.formulation", "allowed"},
+      {{"material.youngs_modulus=0"}, "material.youngs_modulus", ""},
+      {{"material.density=-2"}, "material.density", ""},
+      {{"material.youngs_modulus=abc"}, "material.youngs_modulus", "expected a number"},
+      {{"material.youngs_modulus=.nan"}, "material.youngs_modulus", "finite"},
+      {{"material.poisson_ratio=0.2"}, "material.poisson_ratio", "fixes Poisson"},
+      {{"material.critical_stretch=1e-3"}, "material.critical_stretch", "not both"},
+      {{"material.fracture_energy=null"}, "material", "fracture_energy"},
+      {{"model.formulation=lps", "material.poisson_ratio=0.5"}, "material.poisson_ratio", ""},
+      {{"discretization.spacing=0"}, "discretization.spacing", ""},
+      {{"discretization.horizon=0.003"}, "discretization.horizon", "not both"},
+      {{"discretization.horizon_factor=0.5"}, "discretization.horizon_factor", ""},
+      {{"discretization.horizon_factor=null", "discretization.horizon=0.0005"},
+       "discretization.horizon", "at least one grid spacing"},
+      {{"discretization.quadrature=gauss"}, "discretization.quadrature", "allowed"},
+      {{"discretization.body.box.max=[0.1]"}, "discretization.body.box.max", "expected 2 numbers"},
+      {{"discretization.body.box.max=[-0.1, 0.04]"}, "discretization.body.box.max", ">= the min"},
+      {{"discretization.body.box.max=[0.0005, 0.04]"}, "discretization.body", "one grid spacing"},
+      {{"discretization.body={sphere: {center: [0, 0, 0], radius: 1}}"}, "discretization.body.sphere", "3D"},
+      {{"discretization.body={box: {min: [0, 0], max: [1, 1]}, disk: {center: [0, 0], radius: 1}}"},
+       "discretization.body", "exactly one"},
+      {{"cracks.0.segment=[[0, 0.02], [0, 0.02]]"}, "cracks[0].segment", "must differ"},
+      {{"cracks.0.segment=[[1, 1], [2, 2]]"}, "cracks[0].segment", "outside the body"},
+      {{"loads.0.type=pressure"}, "loads[0].type", "allowed"},
+      {{"loads.0.value=[0, 1, 2]"}, "loads[0].value", "expected 2 numbers"},
+      {{"boundary_conditions.0.displacement=[0, 0]"}, "boundary_conditions[0]", "exactly one"},
+      {{"solver.type=implicit"}, "solver.type", "allowed"},
+      {{"solver.steps=10"}, "solver", "exactly one of end_time"},
+      {{"solver.end_time=-1"}, "solver.end_time", ""},
+      {{"solver.safety_factor=1.5"}, "solver.safety_factor", "(0, 1]"},
+      {{"solver.multirate_ratio=3"}, "solver.multirate_ratio", "multirate: true"},
+      {{"solver.multirate=true", "solver.multirate_ratio=5"}, "solver.multirate_ratio", "2, 3 or 4"},
+      {{"solver.multirate=true", "model.formulation=lps", "material.poisson_ratio=0.25"},
+       "solver.multirate", "row-local"},
+      {{"solver.multirate=true", "solver.bond_pairing=dual_horizon"}, "solver.multirate", "source_horizon"},
+      {{"solver.bond_pairing=both"}, "solver.bond_pairing", "allowed"},
+      {{"solver.type=relaxation"}, "solver.end_time", "no physical time step"},
+      {{"solver.type=static"}, "solver.end_time", "no time stepping"},
+      {{"solver.type=static", "solver.end_time=null", "model.formulation=lps",
+        "material.poisson_ratio=0.25"}, "solver.type", "relaxation"},
+      {{"solver.memory_limit_gb=0"}, "solver.memory_limit_gb", "(0, 1e6]"},
+      {{"damage.overlay={n: 2}", "solver.bond_pairing=dual_horizon"}, "damage", "source_horizon"},
+      {{"material.thermal_strain=1e-3", "solver.bond_pairing=dual_horizon"}, "material", "thermal_strain"},
+      {{"adapt={max_level: 7}"}, "adapt.max_level", ""},
+      {{"adapt={max_level: 1, initial_refinement: [{region: {all: true}, level: 2}]}"},
+       "adapt.max_level", "initial_refinement"},
+      {{"adapt={m_per_level: [3, 3]}"}, "adapt.m_per_level", "delta_m"},
+      {{"adapt={scaling: delta_m, m_per_level: [4, 3]}"}, "adapt.m_per_level", "level 0"},
+      {{"adapt={method: A, refine_loads: true, energy_trigger: 0.5}"}, "adapt.refine_loads", "method a"},
+      {{"adapt={method: A, coarsen: true, energy_trigger: 0.5}"}, "adapt.coarsen", "method"},
+      {{"adapt={coarsen: true, damage_trigger: true}"}, "adapt.coarsen", "energy trigger"},
+      {{"adapt={energy_trigger: 0}"}, "adapt.energy_trigger", ""},
+      {{"adapt={stretch_trigger: 1.5}"}, "adapt.stretch_trigger", ""},
+      {{"adapt={energy_trigger: 0.5}", "solver.type=relaxation", "solver.end_time=null"}, "adapt", "explicit"},
+      {{"output.vtu_snapshots=-1"}, "output.vtu_snapshots", "0 ... 100000"},
+      {{"output.history_every=0"}, "output.history_every", ">= 1"},
+      {{"output.checkpoint_every=-5"}, "output.checkpoint_every", ">= 0"},
+      {{"output.png_width=50"}, "output.png_width", "[100, 8000]"},
+      {{"output.crack_tip.direction=[0, 0]"}, "output.crack_tip.direction", "non-zero"},
+      {{"output.crack_tip.threshold=2"}, "output.crack_tip.threshold", ""},
+      {{"output.colour=blue"}, "output.colour", "unknown key"},
+  };
+  for (const Row& r : rows) {
+    std::string label;
+    for (const auto& s : r.set) label += s + " ";
+    SCOPED_TRACE(label);
+    try {
+      parse_deck(base, "bad.yaml", r.set);
+      ADD_FAILURE() << "accepted";
+    } catch (const DeckError& e) {
+      const std::string msg = e.what();
+      EXPECT_NE(msg.find(std::string("'") + r.key), std::string::npos) << msg;
+      EXPECT_NE(msg.find(r.because), std::string::npos) << msg;
+      EXPECT_NE(msg.find("bad.yaml"), std::string::npos) << msg;
+    }
+  }
+}
