@@ -5,6 +5,8 @@
 #include <numbers>
 
 #include "material/micromodulus.hpp"
+#include "setup/build_model.hpp"
+#include "test_helpers.hpp"
 
 using namespace periadapt;
 constexpr double pi = std::numbers::pi;
@@ -58,4 +60,50 @@ TEST(CriticalStretch, MatchesThesisEq215) {
   const double c1 = micromodulus_c0(2, PlaneCondition::Stress, InfluenceShape::Triangular, E, d, 1);
   EXPECT_NEAR(critical_stretch_from_g0(2, InfluenceShape::Triangular, c1, d, 1, G0),
               std::sqrt(5 * pi * G0 / (9 * E * d)), 1e-12);
+}
+
+// The critical stretch a deck's fracture energy gives, checked against its definition rather than
+// the closed forms: breaking every bond that crosses a plane, each at its micropotential
+// c(xi) s0^2 xi / 2, must take G0 per unit crack area. The integral over the bonds crossing the
+// plane (a point at depth z below it, partners at distance xi in the cap beyond it) is summed
+// numerically for 1D, 2D and 3D and two influence shapes, with c0 and s0 as the model built them.
+TEST(CriticalStretch, BreakingEveryBondAcrossAPlaneTakesTheFractureEnergy) {
+  const double G0 = 135, delta = 3e-3, area = 2e-4, thickness = 5e-3;
+  for (int dim : {1, 2, 3})
+    for (const char* shape : {"constant", "triangular"}) {
+      SCOPED_TRACE(std::to_string(dim) + "D " + shape);
+      std::string yaml = "model: {dimension: " + std::to_string(dim) +
+                         (dim == 1 ? ", thickness: 2.0e-4" : dim == 2 ? ", thickness: 5.0e-3" : "") +
+                         "}\nmaterial: {youngs_modulus: 72.0e9, density: 2440, fracture_energy: 135, "
+                         "micromodulus: " + shape + "}\n"
+                         "discretization: {spacing: 1.0e-3, horizon_factor: 3, body: {box: {min: [" +
+                         (dim == 1 ? "0], max: [0.01]" : dim == 2 ? "0, 0], max: [0.01, 0.01]"
+                                                                 : "0, 0, 0], max: [0.01, 0.01, 0.01]") +
+                         "}}}\nsolver: {steps: 1}\n";
+      const Model md = build_model(test::deck_from(yaml));
+      const double c0 = md.nodes.micromodulus[0], s0 = md.nodes.critical_stretch[0];
+      const bool tri = std::string(shape) == "triangular";
+      auto w = [&](double xi) { return c0 * (tri ? 1 - xi / delta : 1.0) * s0 * s0 * xi / 2; };
+      // Partners of a point at depth z, at distance xi beyond the plane: 1D one, 2D the arc
+      // 2 xi acos(z/xi), 3D the cap 2 pi xi^2 (1 - z/xi).
+      auto measure = [&](double z, double xi) {
+        if (dim == 1) return 1.0;
+        if (dim == 2) return 2 * xi * std::acos(z / xi);
+        return 2 * pi * xi * xi * (1 - z / xi);
+      };
+      const int n = 1500;
+      double G = 0;
+      for (int a = 0; a < n; ++a) {
+        const double z = (a + 0.5) * delta / n;
+        const double h = (delta - z) / n;
+        for (int b = 0; b < n; ++b) {
+          const double xi = z + (b + 0.5) * h;
+          G += w(xi) * measure(z, xi) * h * (delta / n);
+        }
+      }
+      // Per unit crack area: 1D bonds act across the cross-section, 2D across the thickness.
+      if (dim == 1) G *= area;
+      if (dim == 2) G *= thickness;
+      EXPECT_NEAR(G / G0, 1.0, 2e-4);
+    }
 }
