@@ -13,9 +13,9 @@
 #include <string>
 
 #include "adapt/refine.hpp"
-#include "app/simulation.hpp"
-#include "io/deck.hpp"
-#include "model/build_model.hpp"
+#include "run/simulation.hpp"
+#include "input/deck.hpp"
+#include "setup/build_model.hpp"
 #include "solver/velocity_verlet.hpp"
 
 using namespace periadapt;

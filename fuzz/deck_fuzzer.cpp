@@ -6,9 +6,9 @@
 #include <cstdint>
 #include <string>
 
-#include "io/deck.hpp"
-#include "io/deck_error.hpp"
-#include "model/memory_estimate.hpp"
+#include "input/deck.hpp"
+#include "input/deck_error.hpp"
+#include "setup/memory_estimate.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

@@ -13,8 +13,8 @@ if ! command -v clang++ > /dev/null; then
 fi
 mkdir -p "$out/corpus"
 flags=(-std=c++20 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -Isrc)
-clang++ "${flags[@]}" fuzz/deck_fuzzer.cpp src/io/deck.cpp src/io/yaml_section.cpp \
-  src/core/expression.cpp src/model/memory_estimate.cpp src/material/micromodulus.cpp \
+clang++ "${flags[@]}" fuzz/deck_fuzzer.cpp src/input/deck.cpp src/input/yaml_section.cpp \
+  src/core/expression.cpp src/setup/memory_estimate.cpp src/material/micromodulus.cpp \
   -lyaml-cpp -lmuparser -lfmt -o "$out/deck_fuzzer"
 dict="$PWD/fuzz/deck.dict"
 seeds="$out/seeds"; rm -rf "$seeds"; mkdir -p "$seeds"

@@ -8,8 +8,8 @@
 
 #include "adapt/adaptor.hpp"
 #include "adapt/refine.hpp"
-#include "app/simulation.hpp"
-#include "model/build_model.hpp"
+#include "run/simulation.hpp"
+#include "setup/build_model.hpp"
 #include "solver/internal_forces.hpp"
 #include "solver/velocity_verlet.hpp"
 #include "analysis/energy.hpp"

@@ -9,8 +9,8 @@
 
 #include "adapt/refine.hpp"
 #include "adapt/triggers.hpp"
-#include "app/simulation.hpp"
-#include "io/deck_error.hpp"
+#include "run/simulation.hpp"
+#include "input/deck_error.hpp"
 #include "solver/velocity_verlet.hpp"
 #include "test_helpers.hpp"
 

@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "io/deck.hpp"
-#include "io/deck_error.hpp"
+#include "input/deck.hpp"
+#include "input/deck_error.hpp"
 
 using namespace periadapt;
 

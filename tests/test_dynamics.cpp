@@ -6,8 +6,8 @@
 #include <cmath>
 
 #include "analysis/energy.hpp"
-#include "app/simulation.hpp"
-#include "io/deck_error.hpp"
+#include "run/simulation.hpp"
+#include "input/deck_error.hpp"
 #include "solver/velocity_verlet.hpp"
 #include "test_helpers.hpp"
 
@@ -316,7 +316,7 @@ TEST(Dynamics, ExternalWorkOfADrivenBodyMatchesItsAnalyticWork) {
   }
 }
 
-#include "model/memory_estimate.hpp"
+#include "setup/memory_estimate.hpp"
 
 TEST(Dynamics, TheDeckMemoryEstimateBoundsTheBuiltModelClosely) {
   // The estimate refuses decks before any allocation, so it must not refuse workable ones: it

@@ -6,7 +6,7 @@
 
 #include "analysis/energy.hpp"
 #include "material/pmb.hpp"
-#include "model/build_model.hpp"
+#include "setup/build_model.hpp"
 #include "solver/internal_forces.hpp"
 #include "test_helpers.hpp"
 

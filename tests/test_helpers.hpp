@@ -7,9 +7,9 @@
 #include <vector>
 
 #include "analysis/energy.hpp"
-#include "app/simulation.hpp"
-#include "io/deck.hpp"
-#include "model/build_model.hpp"
+#include "run/simulation.hpp"
+#include "input/deck.hpp"
+#include "setup/build_model.hpp"
 #include "solver/velocity_verlet.hpp"
 
 namespace periadapt::test {

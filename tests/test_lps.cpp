@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "analysis/energy.hpp"
-#include "model/build_model.hpp"
+#include "setup/build_model.hpp"
 #include "solver/dynamic_relaxation.hpp"
 #include "solver/internal_forces.hpp"
 #include "test_helpers.hpp"
@@ -133,7 +133,7 @@ TEST(Lps, PlateInTensionContractsWithItsPoissonRatio) {
   RecordProperty("pmb_lateral_ratio", std::to_string(rb));
 }
 
-#include "app/simulation.hpp"
+#include "run/simulation.hpp"
 #include "solver/velocity_verlet.hpp"
 
 TEST(Lps, GaussianPulseConservesEnergyInAPlate) {

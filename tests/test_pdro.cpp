@@ -6,7 +6,7 @@
 
 #include "material/lps.hpp"
 #include "material/pmb.hpp"
-#include "model/build_model.hpp"
+#include "setup/build_model.hpp"
 #include "overlay/pddo.hpp"
 #include "studies/pdro_bar.hpp"
 #include "test_helpers.hpp"

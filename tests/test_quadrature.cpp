@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "discretize/partial_volume.hpp"
-#include "model/build_model.hpp"
+#include "setup/build_model.hpp"
 #include "studies/weak_directions.hpp"
 #include "test_helpers.hpp"
 

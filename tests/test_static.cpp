@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "model/build_model.hpp"
+#include "setup/build_model.hpp"
 #include "solver/linear_static.hpp"
 #include "studies/bobaru_1d_static.hpp"
 #include "test_helpers.hpp"

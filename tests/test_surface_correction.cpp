@@ -12,7 +12,7 @@
 
 #include "material/pmb.hpp"
 #include "studies/plate_error_profiles.hpp"
-#include "app/static_run.hpp"
+#include "run/static_run.hpp"
 #include "test_helpers.hpp"
 
 using namespace periadapt;

@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "app/simulation.hpp"
+#include "run/simulation.hpp"
 #include "test_helpers.hpp"
 
 using namespace periadapt;

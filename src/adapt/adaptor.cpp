@@ -1,6 +1,6 @@
 #include "adapt/adaptor.hpp"
 
-#include "io/binary_archive.hpp"
+#include "core/binary_archive.hpp"
 
 #include <fmt/core.h>
 

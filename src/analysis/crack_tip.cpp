@@ -1,6 +1,6 @@
 #include "analysis/crack_tip.hpp"
 
-#include "io/binary_archive.hpp"
+#include "core/binary_archive.hpp"
 
 #include <algorithm>
 #include <cmath>

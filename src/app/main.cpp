@@ -9,25 +9,16 @@
 
 #include <fmt/format.h>
 
-#include "app/simulation.hpp"
-#include "app/static_run.hpp"
-#include "app/relaxation_run.hpp"
+#include "run/simulation.hpp"
+#include "run/static_run.hpp"
+#include "run/relaxation_run.hpp"
 #include "adapt/refine.hpp"
-#include "studies/bobaru_1d_static.hpp"
-#include "studies/bobaru_1d_wave.hpp"
-#include "studies/wave_patch_2d.hpp"
-#include "studies/pdro_bar.hpp"
-#include "studies/pdro_sent.hpp"
-#include "studies/pdro_disk.hpp"
-#include "studies/static_plate_2d.hpp"
-#include "studies/static_plate_refined.hpp"
-#include "studies/wave_levels_2d.hpp"
-#include "studies/weak_directions.hpp"
-#include "io/deck.hpp"
-#include "app/interrupt.hpp"
+#include "studies/registry.hpp"
+#include "input/deck.hpp"
+#include "run/interrupt.hpp"
 #include "io/atomic_output.hpp"
-#include "io/deck_error.hpp"
-#include "model/build_model.hpp"
+#include "input/deck_error.hpp"
+#include "setup/build_model.hpp"
 #include "solver/velocity_verlet.hpp"
 
 using namespace periadapt;
@@ -172,25 +163,23 @@ int main(int argc, char** argv) {
   std::string study_name;
   CLI::App* study = app.add_subcommand("study", "run a built-in study of the seeds and print its "
                                                 "tables beside the published numbers");
-  study->add_option("name", study_name, "study name")
-      ->required()
-      ->check(CLI::IsMember(
-          {"bobaru-1d-static", "bobaru-1d-wave", "static-plate-2d", "static-plate-refined",
-           "wave-patch-2d", "pdro-bar", "pdro-sent", "pdro-disk", "weak-directions", "wave-levels-2d"}));
+  std::vector<std::string> study_names;
+  std::string study_help = "study name:";
+  for (const Study& st : studies()) {
+    study_names.push_back(st.name);
+    study_help += fmt::format("\n    {:22s}{}", st.name, st.what);
+  }
+  study->add_option("name", study_name, study_help)->required()->check(CLI::IsMember(study_names));
+  StudyOptions study_opt;
   study->add_option("--out", out, "directory for the study's CSV files");
-  PdroBarOptions bar;
-  bool bar_quick = false;
-  PdroSentOptions sent;
-  study->add_flag("--pim", bar.pim, "pdro-*: overlay interpolation by PIM instead of PDDO");
-  study->add_flag("--gaussian", bar.gaussian,
+  study->add_flag("--pim", study_opt.pim, "pdro-*: overlay interpolation by PIM instead of PDDO");
+  study->add_flag("--gaussian", study_opt.gaussian,
                   "pdro-*: PDDO with the Gaussian weight exp(-4 r^2/delta^2) instead of uniform");
-  study->add_flag("--whole-bond", bar.whole_bond,
+  study->add_flag("--whole-bond", study_opt.whole_bond,
                   "pdro-*: overlay sub-pairs over the whole bond instead of the paper's three");
-  PdroDiskOptions disk;
-  std::string study_deck;
-  study->add_option("--deck", study_deck, "pdro-sent, pdro-disk: the deck to vary (default: "
-                                          "examples/pdro_sent_2d.yaml, examples/pdro_disk_2d.yaml)");
-  study->add_flag("--quick", bar_quick, "pdro-bar: targets 0.9, 0.5, 0.2 mm only; pdro-sent: 1 mm native and n = 2, 5 only; pdro-disk: n = 2 only");
+  study->add_option("--deck", study_opt.deck, "pdro-sent, pdro-disk: the deck to vary (default: "
+                                              "examples/pdro_sent_2d.yaml, examples/pdro_disk_2d.yaml)");
+  study->add_flag("--quick", study_opt.quick, "pdro-bar: targets 0.9, 0.5, 0.2 mm only; pdro-sent: 1 mm native and n = 2, 5 only; pdro-disk: n = 2 only");
   study->add_option("--threads", threads, "OpenMP threads (default: all cores)")
       ->check(CLI::Range(1, 4096));
   // A first word that is no subcommand (CLI11 would report only that one is required).
@@ -215,33 +204,8 @@ int main(int argc, char** argv) {
     if (chk->parsed()) return check(deck, overrides);
     if (study->parsed()) {
       if (!out.empty()) std::filesystem::create_directories(out);
-      if (study_name == "static-plate-2d") return run_static_plate_study(out);
-      if (study_name == "bobaru-1d-wave") return run_bobaru_1d_wave_study(out);
-      if (study_name == "wave-patch-2d") return run_wave_patch_study(out);
-      if (study_name == "static-plate-refined") return run_static_plate_refined_study(out);
-      if (study_name == "weak-directions") return run_weak_directions_study(out);
-      if (study_name == "wave-levels-2d") return run_wave_levels_study(out);
-      if (study_name == "pdro-bar") {
-        if (bar_quick) bar.targets = {0.9e-3, 0.5e-3, 0.2e-3};
-        return run_pdro_bar_study(out, bar);
-      }
-      if (study_name == "pdro-sent") {
-        sent.pim = bar.pim;
-        sent.gaussian = bar.gaussian;
-        sent.whole_bond = bar.whole_bond;
-        if (!study_deck.empty()) sent.deck = study_deck;
-        if (bar_quick) sent.native_spacings = {1.0e-3}, sent.overlay_n = {2.0, 5.0};
-        return run_pdro_sent_study(out, sent);
-      }
-      if (study_name == "pdro-disk") {
-        disk.pim = bar.pim;
-        disk.gaussian = bar.gaussian;
-        disk.whole_bond = bar.whole_bond;
-        if (!study_deck.empty()) disk.deck = study_deck;
-        if (bar_quick) disk.overlay_n = {2.0};
-        return run_pdro_disk_study(out, disk);
-      }
-      return run_bobaru_1d_study(out);
+      study_opt.out_dir = out;
+      return find_study(study_name)->run(study_opt);
     }
     RunOptions ro;
     if (!out.empty()) ro.out_dir = out;

@@ -1,4 +1,4 @@
-#include "io/deck.hpp"
+#include "input/deck.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "core/expression.hpp"
-#include "io/yaml_section.hpp"
+#include "input/yaml_section.hpp"
 
 namespace periadapt {
 

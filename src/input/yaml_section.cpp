@@ -1,4 +1,4 @@
-#include "io/yaml_section.hpp"
+#include "input/yaml_section.hpp"
 
 #include <algorithm>
 #include <cmath>

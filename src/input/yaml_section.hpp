@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "io/deck_error.hpp"
+#include "input/deck_error.hpp"
 
 namespace periadapt {
 

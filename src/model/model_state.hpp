@@ -4,7 +4,7 @@
 // values the next step's kernels and triggers read. The rest (material, regions, load histories,
 // pre-cracks) is rebuilt from the deck. Nodes are stored in global order, independent of
 // threads or how a run is split.
-#include "io/binary_archive.hpp"
+#include "core/binary_archive.hpp"
 #include "model/model.hpp"
 
 namespace periadapt {

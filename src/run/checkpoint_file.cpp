@@ -1,4 +1,4 @@
-#include "app/checkpoint_file.hpp"
+#include "run/checkpoint_file.hpp"
 
 #include <fmt/core.h>
 
@@ -8,8 +8,8 @@
 #include <sstream>
 
 #include "io/atomic_output.hpp"
-#include "io/binary_archive.hpp"
-#include "io/deck_error.hpp"
+#include "core/binary_archive.hpp"
+#include "input/deck_error.hpp"
 
 #ifndef PERIADAPT_BUILD_ID
 #define PERIADAPT_BUILD_ID "unknown"

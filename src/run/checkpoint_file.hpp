@@ -4,7 +4,7 @@
 // checkpoint stays intact until the new one is complete (a killed run restarts from it).
 #include <string>
 
-#include "io/deck.hpp"
+#include "input/deck.hpp"
 
 namespace periadapt {
 

@@ -1,4 +1,4 @@
-#include "app/interrupt.hpp"
+#include "run/interrupt.hpp"
 
 #include <csignal>
 

@@ -1,4 +1,4 @@
-#include "app/relaxation_run.hpp"
+#include "run/relaxation_run.hpp"
 
 #include "io/atomic_output.hpp"
 
@@ -10,10 +10,10 @@
 #include <memory>
 
 #include "analysis/energy.hpp"
-#include "app/snapshot_fields.hpp"
-#include "io/deck_error.hpp"
+#include "run/snapshot_fields.hpp"
+#include "input/deck_error.hpp"
 #include "io/vtu_writer.hpp"
-#include "model/build_model.hpp"
+#include "setup/build_model.hpp"
 #include "solver/dynamic_relaxation.hpp"
 
 namespace periadapt {

@@ -1,7 +1,7 @@
 #pragma once
 // A quasi-static run by adaptive dynamic relaxation (solver.type: relaxation): load steps with
 // bond breaking; a VTU snapshot and a history row per load step, summary.json.
-#include "app/simulation.hpp"
+#include "run/simulation.hpp"
 
 namespace periadapt {
 

@@ -1,5 +1,5 @@
-#include "app/simulation.hpp"
-#include "app/snapshot_fields.hpp"
+#include "run/simulation.hpp"
+#include "run/snapshot_fields.hpp"
 #include "io/line_plot.hpp"
 #include "adapt/adaptor.hpp"
 
@@ -18,18 +18,18 @@
 #include <fmt/format.h>
 
 #include "analysis/crack_tip.hpp"
-#include "app/checkpoint_file.hpp"
-#include "io/binary_archive.hpp"
+#include "run/checkpoint_file.hpp"
+#include "core/binary_archive.hpp"
 #include "model/model_state.hpp"
 #include "analysis/energy.hpp"
 #include "analysis/refinement_coverage.hpp"
-#include "app/interrupt.hpp"
-#include "app/progress.hpp"
+#include "run/interrupt.hpp"
+#include "run/progress.hpp"
 #include "io/atomic_output.hpp"
 #include "io/damage_png.hpp"
-#include "io/deck_error.hpp"
+#include "input/deck_error.hpp"
 #include "io/vtu_writer.hpp"
-#include "model/build_model.hpp"
+#include "setup/build_model.hpp"
 #include "solver/stable_time_step.hpp"
 #include "solver/velocity_verlet.hpp"
 

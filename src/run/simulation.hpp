@@ -5,7 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "io/deck.hpp"
+#include "input/deck.hpp"
 #include "model/model.hpp"
 
 namespace periadapt {

@@ -1,4 +1,4 @@
-#include "app/snapshot_fields.hpp"
+#include "run/snapshot_fields.hpp"
 
 namespace periadapt {
 

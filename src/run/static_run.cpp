@@ -1,4 +1,4 @@
-#include "app/static_run.hpp"
+#include "run/static_run.hpp"
 
 #include "io/atomic_output.hpp"
 
@@ -9,10 +9,10 @@
 #include <fstream>
 
 #include "analysis/energy.hpp"
-#include "app/snapshot_fields.hpp"
-#include "io/deck_error.hpp"
+#include "run/snapshot_fields.hpp"
+#include "input/deck_error.hpp"
 #include "io/vtu_writer.hpp"
-#include "model/build_model.hpp"
+#include "setup/build_model.hpp"
 #include "solver/linear_static.hpp"
 
 namespace periadapt {

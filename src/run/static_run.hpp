@@ -2,7 +2,7 @@
 // A static run (solver.type: static): linearized bond-based equilibrium under the deck's loads at
 // full amplitude and its displacement conditions; writes a VTU snapshot, displacement.csv and
 // summary.json.
-#include "app/simulation.hpp"
+#include "run/simulation.hpp"
 
 namespace periadapt {
 

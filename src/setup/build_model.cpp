@@ -1,4 +1,4 @@
-#include "model/build_model.hpp"
+#include "setup/build_model.hpp"
 
 #include "adapt/refine.hpp"
 #include "discretize/surface_correction.hpp"
@@ -10,8 +10,8 @@
 
 #include "core/expression.hpp"
 #include "discretize/families.hpp"
-#include "io/deck_error.hpp"
-#include "model/memory_estimate.hpp"
+#include "input/deck_error.hpp"
+#include "setup/memory_estimate.hpp"
 
 namespace periadapt {
 

@@ -1,7 +1,7 @@
 #pragma once
 // Deck -> Model: grid, horizons, material constants, families, pre-cracks, loads, motions and
 // initial fields. Throws DeckError when a deck entry cannot be realised (e.g. an empty region).
-#include "io/deck.hpp"
+#include "input/deck.hpp"
 #include "model/model.hpp"
 
 namespace periadapt {

@@ -1,4 +1,4 @@
-#include "model/memory_estimate.hpp"
+#include "setup/memory_estimate.hpp"
 
 #include <fmt/core.h>
 
@@ -10,7 +10,7 @@
 
 #include "core/bond_families.hpp"
 #include "core/node_set.hpp"
-#include "io/deck_error.hpp"
+#include "input/deck_error.hpp"
 
 namespace periadapt {
 

@@ -4,7 +4,7 @@
 // kills them.
 #include <cstddef>
 
-#include "io/deck.hpp"
+#include "input/deck.hpp"
 
 namespace periadapt {
 

@@ -1,7 +1,7 @@
 // Checkpoint of the integrator between two steps: clock, work and counters, the multi-rate
 // classes and cycles, the prescribed motions' reactions and the energies kept for the triggers.
 // The undo copy is not kept: a step saves it afresh before it runs.
-#include "io/binary_archive.hpp"
+#include "core/binary_archive.hpp"
 #include "solver/velocity_verlet.hpp"
 
 namespace periadapt {

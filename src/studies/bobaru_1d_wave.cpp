@@ -8,9 +8,9 @@
 #include <fstream>
 
 #include "adapt/adaptor.hpp"
-#include "app/simulation.hpp"
-#include "io/deck.hpp"
-#include "model/build_model.hpp"
+#include "run/simulation.hpp"
+#include "input/deck.hpp"
+#include "setup/build_model.hpp"
 #include "solver/velocity_verlet.hpp"
 #include "studies/study_csv.hpp"
 

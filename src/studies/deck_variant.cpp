@@ -3,7 +3,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "io/deck_error.hpp"
+#include "input/deck_error.hpp"
 
 namespace periadapt {
 

@@ -7,7 +7,7 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include "io/deck.hpp"
+#include "input/deck.hpp"
 
 namespace periadapt {
 

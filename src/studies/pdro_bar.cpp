@@ -7,10 +7,10 @@
 #include <fstream>
 #include <numbers>
 
-#include "app/simulation.hpp"
-#include "io/deck.hpp"
+#include "run/simulation.hpp"
+#include "input/deck.hpp"
 #include "io/line_plot.hpp"
-#include "model/build_model.hpp"
+#include "setup/build_model.hpp"
 #include "solver/velocity_verlet.hpp"
 
 namespace periadapt {

@@ -9,7 +9,7 @@
 #include <set>
 #include <sstream>
 
-#include "app/simulation.hpp"
+#include "run/simulation.hpp"
 #include "io/line_plot.hpp"
 #include "studies/deck_variant.hpp"
 

@@ -8,9 +8,9 @@
 #include <fstream>
 #include <numbers>
 
-#include "app/simulation.hpp"
+#include "run/simulation.hpp"
 #include "core/geometry.hpp"
-#include "io/deck_error.hpp"
+#include "input/deck_error.hpp"
 #include "studies/deck_variant.hpp"
 
 namespace periadapt {

@@ -7,8 +7,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "app/static_run.hpp"
-#include "io/deck.hpp"
+#include "run/static_run.hpp"
+#include "input/deck.hpp"
 #include "io/line_plot.hpp"
 #include "studies/plate_error_profiles.hpp"
 

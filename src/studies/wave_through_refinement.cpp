@@ -4,9 +4,9 @@
 #include <cmath>
 
 #include "analysis/energy.hpp"
-#include "app/simulation.hpp"
-#include "io/deck.hpp"
-#include "model/build_model.hpp"
+#include "run/simulation.hpp"
+#include "input/deck.hpp"
+#include "setup/build_model.hpp"
 #include "solver/velocity_verlet.hpp"
 
 namespace periadapt {

@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "io/deck.hpp"
-#include "model/build_model.hpp"
+#include "input/deck.hpp"
+#include "setup/build_model.hpp"
 #include "studies/study_csv.hpp"
 
 namespace periadapt {
