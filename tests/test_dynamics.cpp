@@ -7,6 +7,7 @@
 
 #include "analysis/energy.hpp"
 #include "run/simulation.hpp"
+#include "setup/build_model.hpp"
 #include "input/deck_error.hpp"
 #include "solver/velocity_verlet.hpp"
 #include "test_helpers.hpp"
@@ -346,4 +347,48 @@ TEST(Dynamics, TheDeckMemoryEstimateBoundsTheBuiltModelClosely) {
     EXPECT_GE(e.bonds, bonds) << yaml;
     EXPECT_LE(e.bonds, 2.0 * bonds) << yaml;
   }
+}
+
+// Reactions of prescribed motions: a plate stretched slowly between two gripped strips (smooth
+// ramp over eight wave transits, then held for two periods of its ringing) is in equilibrium, so
+// the two grips pull with equal and opposite forces, and the force is the plate's axial
+// stiffness times the strain between the grips, E t H (u_right - u_left) / L, L the distance
+// between the grips' inner edges (3% for the grips' non-local ends, delta / L = 1%, and the
+// surface correction's residual).
+TEST(Dynamics, GripReactionsBalanceAndMatchTheAxialStiffness) {
+  const double E = 72e9, L0 = 0.3, H = 0.02, t = 0.005, grip = 0.003, du = 3e-5;
+  const std::string yaml =
+      "model: {dimension: 2, thickness: 0.005}\n"
+      "material: {youngs_modulus: 72.0e9, density: 2440}\n"
+      "discretization: {spacing: 1.0e-3, horizon_factor: 3, surface_correction: moments,"
+      " body: {box: {min: [0, 0], max: [0.3, 0.02]}}}\n"
+      "damage: {enabled: false}\n"
+      "boundary_conditions:\n"
+      "  - {name: left, region: {box: {min: [0, 0], max: [0.003, 0.02]}}, displacement: [0, null]}\n"
+      "  - {name: right, region: {box: {min: [0.297, 0], max: [0.3, 0.02]}},"
+      " displacement: [\"3e-5*(t < 4.4e-4 ? 0.5*(1-cos(_pi*t/4.4e-4)) : 1)\", null]}\n"
+      "solver: {end_time: 6.8e-4}\n";
+  const Deck dk = test::deck_from(yaml);
+  Model m = build_model(dk);
+  const TimeStepChoice ts = choose_time_step(dk, m);
+  VelocityVerlet vv(m, ts.dt);
+  vv.initialize();
+  // Mean over the held part: two periods 2 L / c of the bar's fundamental ringing after the ramp.
+  double fl = 0, fr = 0;
+  long samples = 0;
+  for (long s = 1; s <= ts.steps; ++s) {
+    ASSERT_TRUE(vv.step());
+    if (vv.time() > 4.6e-4) {
+      fl += vv.reaction_force(m.motions[0])[0];
+      fr += vv.reaction_force(m.motions[1])[0];
+      ++samples;
+    }
+  }
+  fl /= samples;
+  fr /= samples;
+  const double expected = E * t * H * du / (L0 - 2 * grip);
+  std::printf("grip reactions: right / E t H du / L = %.4f, -left / right = %.4f\n",
+              fr / expected, -fl / fr);
+  EXPECT_NEAR(fr / expected, 1.0, 0.03) << fr << " " << expected;
+  EXPECT_NEAR(-fl / fr, 1.0, 0.01) << fl << " " << fr;
 }

@@ -8,6 +8,7 @@
 #include <omp.h>
 
 #include <chrono>
+#include <cctype>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -53,6 +54,52 @@ void remove_earlier_run_outputs(const std::string& dir) {
         name == "crack_speed.png")
       fs::remove(e.path(), ec);
   }
+}
+
+// history.csv's resultants: per load its applied force and the mean displacement of its nodes,
+// per boundary condition the reaction of its supports and the mean displacement of its nodes
+// (volume-weighted, active nodes), so that load-displacement curves can be drawn.
+std::string column_name(const std::string& prefix, const std::string& name) {
+  std::string s = prefix;
+  for (char c : name) s += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+  return s;
+}
+
+std::string resultant_header(const Model& m) {
+  std::string h;
+  const char* axes = "xyz";
+  auto add = [&](const std::string& base) {
+    for (const char* what : {"_f", "_u"})
+      for (int d = 0; d < m.nodes.dim; ++d)
+        h += fmt::format("{}{}{}_{}", base, what, axes[d], what[1] == 'f' ? "N," : "m,");
+  };
+  for (const BodyLoad& l : m.loads) add(column_name("load_", l.name));
+  for (const PrescribedMotion& p : m.motions) add(column_name("bc_", p.name));
+  return h;
+}
+
+std::array<double, 3> mean_displacement(const NodeSet& ns, const std::vector<std::uint32_t>& nodes) {
+  std::array<double, 3> u{0, 0, 0};
+  double vol = 0;
+  for (std::uint32_t i : nodes) {
+    if (!(ns.flags[i] & kActive)) continue;
+    vol += ns.volume[i];
+    for (int d = 0; d < ns.dim; ++d) u[d] += ns.u[d][i] * ns.volume[i];
+  }
+  for (double& c : u) c = vol > 0 ? c / vol : 0.0;
+  return u;
+}
+
+std::string resultant_columns(const Model& m, const VelocityVerlet& vv) {
+  std::string c;
+  auto add = [&](const std::array<double, 3>& F, const std::array<double, 3>& u) {
+    for (int d = 0; d < m.nodes.dim; ++d) c += fmt::format("{:.9e},", F[d]);
+    for (int d = 0; d < m.nodes.dim; ++d) c += fmt::format("{:.9e},", u[d]);
+  };
+  for (const BodyLoad& l : m.loads) add(vv.applied_force(l), mean_displacement(m.nodes, l.nodes));
+  for (const PrescribedMotion& p : m.motions)
+    add(vv.reaction_force(p), mean_displacement(m.nodes, p.nodes));
+  return c;
 }
 
 std::size_t active_count(const NodeSet& ns) {
@@ -198,7 +245,7 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
     if (!restart)
       hist << "step,time_s,kinetic_energy_J,strain_energy_J,external_work_J,energy_balance_J,"
               "broken_bonds,damaged_nodes,damage_sum,tip_x_m,tip_y_m,tip_z_m,tip_speed_m_s,nodes,"
-              "bonds,wall_time_s\n";
+              "bonds," + resultant_header(m) + "wall_time_s\n";
   }
   std::vector<double> W;
   std::vector<std::string> pngs;
@@ -253,10 +300,10 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
       }
       if (hist.is_open())
         hist << fmt::format(
-            "{},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{},{},{:.4f}\n",
+            "{},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{},{},{}{:.4f}\n",
             step, t, K, U, vv.external_work(), K + U - vv.external_work(), vv.broken_bonds(),
             damaged_nodes, damage_sum, last_tip[0], last_tip[1], last_tip[2], tracker.current_speed(),
-            active_count(ns), m.bonds.num_bonds(),
+            active_count(ns), m.bonds.num_bonds(), resultant_columns(m, vv),
             std::chrono::duration<double>(clock::now() - t_start).count());
     }
     const auto t_out = clock::now();

@@ -419,6 +419,32 @@ void VelocityVerlet::compute_accelerations(const std::vector<std::uint32_t>* row
     });
 }
 
+std::array<double, 3> VelocityVerlet::reaction_force(const PrescribedMotion& pm) const {
+  const NodeSet& ns = m_.nodes;
+  std::array<double, 3> F{0, 0, 0};
+  for (std::uint32_t i : pm.nodes) {
+    if (!(ns.flags[i] & kActive)) continue;
+    for (int d = 0; d < ns.dim; ++d) {
+      if (!pm.component[d]) continue;
+      const std::size_t dof = static_cast<std::size_t>(i) * 3 + d;
+      const auto q = std::lower_bound(fixed_dofs_.begin(), fixed_dofs_.end(), dof);
+      if (q != fixed_dofs_.end() && *q == dof)
+        F[d] += reaction_[static_cast<std::size_t>(q - fixed_dofs_.begin())] * ns.volume[i];
+    }
+  }
+  return F;
+}
+
+std::array<double, 3> VelocityVerlet::applied_force(const BodyLoad& load) const {
+  const NodeSet& ns = m_.nodes;
+  double volume = 0;
+  for (std::uint32_t i : load.nodes)
+    if (ns.flags[i] & kActive) volume += ns.volume[i];
+  const double amp = load.amplitude(time_);
+  return {amp * load.density[0] * volume, amp * load.density[1] * volume,
+          amp * load.density[2] * volume};
+}
+
 double VelocityVerlet::external_power() const {
   const NodeSet& ns = m_.nodes;
   double p = 0;

@@ -38,6 +38,10 @@ class VelocityVerlet {
   long step_count() const { return step_; }
   double dt() const { return dt_; }
   double external_work() const { return external_work_; }
+  // Resultants at the current state (N): the force a prescribed motion's supports exert on the
+  // body over its constrained components, and the force a load applies.
+  std::array<double, 3> reaction_force(const PrescribedMotion& pm) const;
+  std::array<double, 3> applied_force(const BodyLoad& load) const;
   std::size_t broken_bonds() const { return broken_total_; }
   const DivergenceError& divergence() const { return divergence_; }
   // Number of bond evaluations done so far (for throughput reports).
