@@ -271,6 +271,8 @@ TEST(DeckErrors, EveryLoaderCheckRefusesItsCaseNamingTheKey) {
       {{"output.crack_tip.direction=[0, 0]"}, "output.crack_tip.direction", "non-zero"},
       {{"output.crack_tip.threshold=2"}, "output.crack_tip.threshold", ""},
       {{"output.colour=blue"}, "output.colour", "unknown key"},
+      {{"output.load_displacement={name: nobody}"}, "output.load_displacement.name", "top left"},
+      {{"output.load_displacement={name: left, component: z}"}, "output.load_displacement.component", "allowed"},
   };
   for (const Row& r : rows) {
     std::string label;

@@ -624,6 +624,25 @@ Deck parse_deck_sections(const std::string& text, const std::string& name,
     out.png_width = static_cast<int>(o->integer("png_width", 1200, [](long v) {
       return (v >= 100 && v <= 8000) ? std::string() : std::string("must be in [100, 8000]");
     }));
+    if (auto ld = o->optional_section("load_displacement")) {
+      LoadDisplacementPlot p;
+      p.name = ld->text("name");
+      bool known = false;
+      std::string names;
+      for (const LoadSpec& l : dk.loads) known = known || l.name == p.name, names += " " + l.name;
+      for (const MotionSpec& mo : dk.motions)
+        known = known || mo.name == p.name, names += " " + mo.name;
+      if (!known)
+        ld->fail("name", "'" + p.name + "' names no load or boundary condition; the names are:" +
+                             (names.empty() ? std::string(" (none)") : names));
+      const std::string c = ld->choice("component", dk.dim == 1   ? std::vector<std::string>{"x"}
+                                                    : dk.dim == 2 ? std::vector<std::string>{"x", "y"}
+                                                                  : std::vector<std::string>{"x", "y", "z"},
+                                       "x");
+      p.component = c[0] - 'x';
+      ld->finish();
+      out.load_displacement = p;
+    }
     if (auto ct = o->optional_section("crack_tip")) {
       out.track_tip = true;
       out.tip_threshold = ct->number("threshold", 0.35, in_range(0, 1));

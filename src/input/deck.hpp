@@ -33,11 +33,19 @@ struct MotionSpec {
   std::array<std::optional<std::string>, 3> component;
 };
 
+// load_displacement.png: the force of one load or boundary condition against the mean
+// displacement of its nodes, one component.
+struct LoadDisplacementPlot {
+  std::string name;
+  int component = 0;
+};
+
 struct OutputSpec {
   std::string directory = "out";
   int vtu_count = 10;                 // snapshots over the run (plus the initial state)
   long history_every = 10;            // steps between history rows and tip samples
   long checkpoint_every = 0;          // steps between checkpoints (0: only on SIGINT/SIGTERM)
+  std::optional<LoadDisplacementPlot> load_displacement;
   std::vector<double> png_times;      // damage pictures at these times (end time always)
   int png_width = 1200;
   bool vtu = true;

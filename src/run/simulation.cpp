@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <fstream>
 #include <set>
+#include <sstream>
 
 #include <fmt/format.h>
 
@@ -51,7 +52,7 @@ void remove_earlier_run_outputs(const std::string& dir) {
     };
     if ((starts("snapshot_") && ends(".vtu")) || (starts("damage_") && ends("us.png")) ||
         name == kCheckpointName || name == "refinement.csv" || name == "crack_speed.csv" ||
-        name == "crack_speed.png")
+        name == "crack_speed.png" || name == "load_displacement.png")
       fs::remove(e.path(), ec);
   }
 }
@@ -76,6 +77,42 @@ std::string resultant_header(const Model& m) {
   for (const BodyLoad& l : m.loads) add(column_name("load_", l.name));
   for (const PrescribedMotion& p : m.motions) add(column_name("bc_", p.name));
   return h;
+}
+
+// output.load_displacement: two columns of the history drawn against each other.
+void write_load_displacement_png(const std::string& dir, const std::string& history,
+                                 const LoadDisplacementPlot& plot, const Model& m) {
+  bool is_bc = false;
+  for (const PrescribedMotion& p : m.motions) is_bc = is_bc || p.name == plot.name;
+  const std::string base = column_name(is_bc ? "bc_" : "load_", plot.name);
+  const char axis = static_cast<char>('x' + plot.component);
+  const std::string fcol = fmt::format("{}_f{}_N", base, axis), ucol = fmt::format("{}_u{}_m", base, axis);
+  std::istringstream in(history);
+  std::string line;
+  std::getline(in, line);
+  auto split = [](const std::string& l) {
+    std::vector<std::string> v;
+    std::stringstream ss(l);
+    for (std::string c; std::getline(ss, c, ',');) v.push_back(c);
+    return v;
+  };
+  const std::vector<std::string> head = split(line);
+  const auto fi = std::find(head.begin(), head.end(), fcol) - head.begin();
+  const auto ui = std::find(head.begin(), head.end(), ucol) - head.begin();
+  if (fi >= static_cast<long>(head.size()) || ui >= static_cast<long>(head.size())) return;
+  PlotSeries ps{plot.name, {}, {}};
+  while (std::getline(in, line)) {
+    const std::vector<std::string> row = split(line);
+    if (row.size() != head.size()) continue;
+    ps.x.push_back(std::stod(row[static_cast<std::size_t>(ui)]) * 1e3);
+    ps.y.push_back(std::stod(row[static_cast<std::size_t>(fi)]));
+  }
+  PlotOptions po;
+  po.title = fmt::format("{}: {} force against mean {} displacement", plot.name,
+                         is_bc ? "reaction" : "applied", axis);
+  po.x_label = fmt::format("u{} (mm)", axis);
+  po.y_label = fmt::format("F{} (N)", axis);
+  write_line_plot(dir + "/load_displacement.png", {ps}, po);
 }
 
 std::array<double, 3> mean_displacement(const NodeSet& ns, const std::vector<std::uint32_t>& nodes) {
@@ -632,6 +669,8 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
       write_line_plot(dir + "/crack_speed.png", {ps}, po);
     }
   }
+  if (opt.write_files && dk.output.load_displacement)
+    write_load_displacement_png(dir, hist.text_so_far(), *dk.output.load_displacement, m);
   if (opt.write_files) {
     j["outputs"] = {{"pvd", vtu ? vtu->pvd_path() : ""},
                     {"history", dir + "/history.csv"},
