@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "run/simulation.hpp"
+#include "run/sweep.hpp"
 #include "run/static_run.hpp"
 #include "run/relaxation_run.hpp"
 #include "adapt/refine.hpp"
@@ -160,6 +161,19 @@ int main(int argc, char** argv) {
   CLI::App* chk = app.add_subcommand("check", "validate a deck and print every resolved parameter");
   chk->add_option("deck", deck, "YAML input deck")->required();
   chk->add_option("--set", overrides, "override a deck key: key.path=value (repeatable)");
+  std::vector<std::string> sweep_sets;
+  CLI::App* sweep = app.add_subcommand(
+      "sweep", "run a deck for every combination of key values, each run in OUT/run_NNNN, "
+               "results in OUT/sweep.csv");
+  sweep->add_option("deck", deck, "YAML input deck")->required();
+  sweep->add_option("--set", sweep_sets,
+                    "key.path=v1,v2,... (repeatable; every combination runs; commas inside [] or "
+                    "{} belong to one value)")
+      ->required();
+  sweep->add_option("--out", out, "folder of the sweep (default: the deck's output.directory)");
+  sweep->add_option("--threads", threads, "OpenMP threads (default: all cores)")
+      ->check(CLI::Range(1, 4096));
+  sweep->add_flag("--quiet", quiet, "no progress output");
   std::string study_name;
   CLI::App* study = app.add_subcommand("study", "run a built-in study of the seeds and print its "
                                                 "tables beside the published numbers");
@@ -188,8 +202,8 @@ int main(int argc, char** argv) {
     bool known = false;
     for (const CLI::App* sub : app.get_subcommands({})) known = known || sub->get_name() == word;
     if (!known) {
-      fmt::print(stderr, "error: '{}' is not a periadapt command; the commands are run, check and "
-                         "study (periadapt --help)\n", word);
+      fmt::print(stderr, "error: '{}' is not a periadapt command; the commands are run, check, "
+                         "sweep and study (periadapt --help)\n", word);
       return 2;
     }
   }
@@ -202,6 +216,10 @@ int main(int argc, char** argv) {
   std::string run_dir;
   try {
     if (chk->parsed()) return check(deck, overrides);
+    if (sweep->parsed()) {
+      run_dir = out.empty() ? load_deck(deck).output.directory : out;
+      return run_sweep(deck, sweep_sets, {}, run_dir, quiet);
+    }
     if (study->parsed()) {
       if (!out.empty()) std::filesystem::create_directories(out);
       study_opt.out_dir = out;
