@@ -3,6 +3,11 @@
 #include <gtest/gtest.h>
 
 #include "core/geometry.hpp"
+#include "setup/build_model.hpp"
+#include "test_helpers.hpp"
+
+#include <cmath>
+#include <string>
 
 using namespace periadapt;
 
@@ -34,4 +39,42 @@ TEST(Geometry, DistanceToShapeIsZeroInsideAndEuclideanOutside) {
   cyl.axis = 2;
   cyl.radius = 0.5;
   EXPECT_DOUBLE_EQ(cyl.distance_to_shape({3, 4, 100}), 4.5);
+}
+
+// Polygon bodies (2D): the nodes are the cell centres inside the outline, each with its full cell
+// volume. An outline along cell edges gives the area exactly; any other misses only cells cut by
+// the outline, at most dx^2 each, and at most sqrt(2) P / dx + 4 cells lie on a perimeter P.
+TEST(Geometry, PolygonBodyVolumesSumToItsArea) {
+  auto volume = [](const std::string& polygon) {
+    const Model m = build_model(test::deck_from(
+        "model: {dimension: 2, thickness: 0.01}\n"
+        "material: {youngs_modulus: 72.0e9, density: 2440}\n"
+        "discretization: {spacing: 1.0e-3, horizon_factor: 3, body: {polygon: " + polygon + "}}\n"
+        "damage: {enabled: false}\nsolver: {steps: 1}\n"));
+    double v = 0;
+    for (double x : m.nodes.volume) v += x;
+    return v / 0.01;
+  };
+  // L-shape on cell edges: 0.04 x 0.04 less its 0.02 x 0.02 corner.
+  EXPECT_NEAR(volume("[[0, 0], [0.04, 0], [0.04, 0.02], [0.02, 0.02], [0.02, 0.04], [0, 0.04]]"),
+              0.04 * 0.04 * 0.75, 1e-15);
+  // A triangle across the lattice (and listed clockwise).
+  const double area = 0.5 * 0.0503 * 0.0371, perimeter = 0.0503 + 0.0371 + std::hypot(0.0503, 0.0371);
+  const double dx = 1e-3;
+  EXPECT_NEAR(volume("[[0.0002, 0.0004], [0.0002, 0.0375], [0.0505, 0.0004]]"), area,
+              std::sqrt(2.0) * perimeter * dx + 4 * dx * dx);
+}
+
+TEST(Geometry, PolygonRegionContainsAndDistance) {
+  Shape s;
+  s.kind = Shape::Kind::Polygon;
+  s.vertices = {{0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 0}, {1, 2, 0}, {0, 2, 0}};
+  EXPECT_TRUE(s.contains({0.5, 1.5, 0}));
+  EXPECT_FALSE(s.contains({1.5, 1.5, 0}));        // the cut-away corner
+  EXPECT_FALSE(s.contains({2.0 + 1e-6, 0.5, 0}));
+  EXPECT_TRUE(s.contains({2.0 + 1e-6, 0.5, 0}, 1e-5));  // within the tolerance of an edge
+  EXPECT_FALSE(s.contains({1.99, 0.5, 0}, -0.02));      // negative tolerance narrows it
+  EXPECT_DOUBLE_EQ(s.distance_to_shape({1.5, 1.5, 0}), 0.5);
+  EXPECT_DOUBLE_EQ(s.distance_to_shape({3, 0.5, 0}), 1.0);
+  EXPECT_EQ(s.distance_to_shape({0.5, 0.5, 0}), 0.0);
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <vector>
 
 namespace periadapt {
 
@@ -28,13 +29,40 @@ struct Box {
   }
 };
 
+// Distance from p to the segment a-b in the xy-plane.
+inline double distance_to_segment_2d(const Vec3& p, const Vec3& a, const Vec3& b) {
+  const double ex = b[0] - a[0], ey = b[1] - a[1];
+  const double len2 = ex * ex + ey * ey;
+  double t = len2 > 0 ? ((p[0] - a[0]) * ex + (p[1] - a[1]) * ey) / len2 : 0.0;
+  t = std::clamp(t, 0.0, 1.0);
+  return std::hypot(p[0] - (a[0] + t * ex), p[1] - (a[1] + t * ey));
+}
+
+// Even-odd rule: inside a simple polygon (vertices in order, either orientation) of the xy-plane.
+inline bool polygon_contains(const std::vector<Vec3>& v, const Vec3& p) {
+  bool in = false;
+  for (std::size_t i = 0, j = v.size() - 1; i < v.size(); j = i++)
+    if ((v[i][1] > p[1]) != (v[j][1] > p[1]) &&
+        p[0] < (v[j][0] - v[i][0]) * (p[1] - v[i][1]) / (v[j][1] - v[i][1]) + v[i][0])
+      in = !in;
+  return in;
+}
+
+inline double polygon_boundary_distance(const std::vector<Vec3>& v, const Vec3& p) {
+  double d = INFINITY;
+  for (std::size_t i = 0, j = v.size() - 1; i < v.size(); j = i++)
+    d = std::min(d, distance_to_segment_2d(p, v[j], v[i]));
+  return d;
+}
+
 // A region of space: box, disk (2D), cylinder along an axis (3D) or sphere.
 struct Shape {
-  enum class Kind { Box, Disk, Cylinder, Sphere, All } kind = Kind::All;
+  enum class Kind { Box, Disk, Cylinder, Sphere, Polygon, All } kind = Kind::All;
   Box box;
   Vec3 center{0, 0, 0};
   double radius = 0;
   int axis = 2;  // cylinder axis (0,1,2)
+  std::vector<Vec3> vertices;  // polygon (2D), in order
   bool outside = false;  // the complement: everything not in the shape (e.g. a clamped rim)
   bool contains(const Vec3& p, double tol = 0.0) const {
     return outside ? !contains_shape(p, -tol) : contains_shape(p, tol);
@@ -56,6 +84,13 @@ struct Shape {
       case Kind::Sphere: {
         Vec3 q = sub(p, center);
         return dot(q, q) <= (radius + tol) * (radius + tol);
+      }
+      case Kind::Polygon: {
+        // tol > 0 widens the polygon by tol (points on its edges count), tol < 0 narrows it.
+        const bool in = polygon_contains(vertices, p);
+        if (tol == 0.0) return in;
+        const double d = polygon_boundary_distance(vertices, p);
+        return tol > 0 ? (in || d <= tol) : (in && d > -tol);
       }
     }
     return false;
@@ -84,6 +119,8 @@ struct Shape {
         const Vec3 q = sub(p, center);
         return std::max(0.0, std::sqrt(dot(q, q)) - radius);
       }
+      case Kind::Polygon:
+        return polygon_contains(vertices, p) ? 0.0 : polygon_boundary_distance(vertices, p);
     }
     return 0.0;
   }

@@ -20,13 +20,60 @@ Vec3 to_vec(const std::vector<double>& v) {
   return p;
 }
 
+// A simple polygon: 3 ... 1000 vertices [x, y] in order, no edge crossing another, area > 0.
+std::vector<Vec3> parse_polygon(Section& s) {
+  const YAML::Node n = s.raw("polygon");
+  if (!n.IsSequence() || n.size() < 3 || n.size() > 1000)
+    s.fail("polygon", "expected a list of 3 ... 1000 vertices [x, y], in order around the polygon");
+  std::vector<Vec3> v;
+  for (const YAML::Node& e : n) {
+    if (!e.IsSequence() || e.size() != 2 || !e[0].IsScalar() || !e[1].IsScalar())
+      s.fail_at(e, "polygon", "each vertex is [x, y]");
+    Vec3 p{0, 0, 0};
+    for (int d = 0; d < 2; ++d) {
+      try {
+        p[d] = e[d].as<double>();
+      } catch (const YAML::Exception&) {
+        s.fail_at(e, "polygon", "each vertex is [x, y] with numbers, got '" + e[d].Scalar() + "'");
+      }
+      if (!std::isfinite(p[d])) s.fail_at(e, "polygon", "vertex coordinates must be finite");
+    }
+    v.push_back(p);
+  }
+  double area2 = 0;
+  for (std::size_t i = 0, j = v.size() - 1; i < v.size(); j = i++)
+    area2 += v[j][0] * v[i][1] - v[i][0] * v[j][1];
+  if (!(std::abs(area2) > 0)) s.fail("polygon", "the polygon has no area");
+  const std::size_t m = v.size();
+  for (std::size_t i = 0; i < m; ++i)
+    for (std::size_t k = i + 1; k < m; ++k) {
+      if (k == i + 1 || (i == 0 && k == m - 1)) continue;  // neighbours share a vertex
+      const Vec3 &a = v[i], &b = v[(i + 1) % m], &c = v[k], &d = v[(k + 1) % m];
+      const double o1 = orient2d(a, b, c), o2 = orient2d(a, b, d), o3 = orient2d(c, d, a),
+                   o4 = orient2d(c, d, b);
+      if (((o1 > 0) != (o2 > 0) || o1 == 0 || o2 == 0) && ((o3 > 0) != (o4 > 0) || o3 == 0 || o4 == 0) &&
+          std::max(std::min(a[0], b[0]), std::min(c[0], d[0])) <= std::min(std::max(a[0], b[0]), std::max(c[0], d[0])) &&
+          std::max(std::min(a[1], b[1]), std::min(c[1], d[1])) <= std::min(std::max(a[1], b[1]), std::max(c[1], d[1])))
+        s.fail("polygon", "edges " + std::to_string(i + 1) + " and " + std::to_string(k + 1) +
+                              " cross or touch: the polygon must be simple (list the vertices in "
+                              "order around it)");
+    }
+  return v;
+}
+
 Shape parse_region(Section s, int dim) {
   Shape sh;
   const std::size_t D = static_cast<std::size_t>(dim);
-  int kinds = s.has("box") + s.has("disk") + s.has("cylinder") + s.has("sphere") + s.has("all");
+  int kinds = s.has("box") + s.has("disk") + s.has("cylinder") + s.has("sphere") +
+              s.has("polygon") + s.has("all");
   if (kinds != 1)
-    s.fail("", "a region needs exactly one of: box, disk (2D), cylinder (3D), sphere (3D), all");
-  if (s.has("all")) {
+    s.fail("", "a region needs exactly one of: box, disk (2D), polygon (2D), cylinder (3D), "
+               "sphere (3D), all");
+  if (s.has("polygon")) {
+    if (dim != 2) s.fail("polygon", "a polygon region is for 2D models");
+    sh.kind = Shape::Kind::Polygon;
+    sh.vertices = parse_polygon(s);
+  } else if (s.has("all")) {
     s.boolean("all");
     sh.kind = Shape::Kind::All;
   } else if (s.has("box")) {
@@ -315,8 +362,19 @@ Deck parse_deck_sections(const std::string& text, const std::string& name,
         g.body.lo[d] = b.center[d] - b.radius;
         g.body.hi[d] = b.center[d] + b.radius;
       }
+    } else if (b.kind == Shape::Kind::Polygon) {
+      // A polygon body: its bounding box, clipped to the polygon.
+      g.clip = b;
+      for (int d = 0; d < 2; ++d) {
+        g.body.lo[d] = INFINITY;
+        g.body.hi[d] = -INFINITY;
+        for (const Vec3& p : b.vertices) {
+          g.body.lo[d] = std::min(g.body.lo[d], p[d]);
+          g.body.hi[d] = std::max(g.body.hi[d], p[d]);
+        }
+      }
     } else if (b.kind != Shape::Kind::Box) {
-      s.fail("body", "the body is a box, or a disk in 2D (use holes to cut it)");
+      s.fail("body", "the body is a box, or a disk or polygon in 2D (use holes to cut it)");
     } else {
       g.body = b.box;
     }
