@@ -228,6 +228,22 @@ TEST(Lps, GaussianPulseThroughARefinedHalfKeepsItsEnergyBounded) {
 
 namespace {
 
+// An LPS block (E = 70 GPa, G0 = 350 J/m^2, dx = 10 mm, m = 3) of `edge` metres a side.
+Model lps_fracture_model(const Case& c, double edge) {
+  const std::string e = fmt::format("{}", edge);
+  const std::string yaml =
+      "model: {dimension: " + std::to_string(c.dim) +
+      (c.dim == 2 ? std::string(", plane: ") + c.plane : std::string()) +
+      ", formulation: lps}\n"
+      "material: {youngs_modulus: 70.0e9, density: 2700, fracture_energy: 350, poisson_ratio: " +
+      fmt::format("{:.17g}", c.nu) + "}\n" +
+      "discretization: {spacing: 0.01, horizon_factor: 3.0, body: {box: " +
+      (c.dim == 2 ? "{min: [0, 0], max: [" + e + ", " + e + "]}"
+                  : "{min: [0, 0, 0], max: [" + e + ", " + e + ", " + e + "]}") +
+      "}}\nsolver: {steps: 1}\n";
+  return build_model(test::deck_from(yaml));
+}
+
 double madenci_oterkus_s0(const Case& c, double E, double G0, double delta) {
   const double mu = E / (2 * (1 + c.nu)), pi = M_PI;
   if (c.dim == 3) {
@@ -250,16 +266,7 @@ double madenci_oterkus_s0(const Case& c, double E, double G0, double delta) {
 TEST(Lps, CriticalStretchFromFractureEnergyMatchesMadenciOterkus) {
   const double E = 70e9, G0 = 350, delta = 3 * 0.01, pi = M_PI;
   auto deck_s0 = [&](const Case& c) {
-    std::string yaml = "model: {dimension: " + std::to_string(c.dim) +
-                       (c.dim == 2 ? std::string(", plane: ") + c.plane : std::string()) +
-                       ", formulation: lps}\n"
-                       "material: {youngs_modulus: 70.0e9, density: 2700, fracture_energy: 350, "
-                       "poisson_ratio: " + fmt::format("{:.17g}", c.nu) + "}\n";
-    const std::string box = c.dim == 2 ? "{min: [0, 0], max: [0.1, 0.1]}"
-                                       : "{min: [0, 0, 0], max: [0.1, 0.1, 0.1]}";
-    yaml += "discretization: {spacing: 0.01, horizon_factor: 3.0, body: {box: " + box +
-            "}}\nsolver: {steps: 1}\n";
-    const Model md = build_model(test::deck_from(yaml));
+    const Model md = lps_fracture_model(c, 0.1);
     for (std::size_t i = 1; i < md.nodes.size(); ++i)
       EXPECT_EQ(md.nodes.critical_stretch[i], md.nodes.critical_stretch[0]);
     return md.nodes.critical_stretch[0];
@@ -283,16 +290,7 @@ TEST(Lps, IsotropicExpansionBreaksEveryBondAtTheFractureEnergysCriticalStretch) 
   for (const Case& c : {Case{2, "stress", 0.2}, Case{3, "", 0.1}}) {
     SCOPED_TRACE(std::to_string(c.dim) + "D");
     for (const double f : {0.999, 1.001}) {
-      std::string yaml = "model: {dimension: " + std::to_string(c.dim) +
-                         (c.dim == 2 ? std::string(", plane: ") + c.plane : std::string()) +
-                         ", formulation: lps}\n"
-                         "material: {youngs_modulus: 70.0e9, density: 2700, fracture_energy: 350, "
-                         "poisson_ratio: " + fmt::format("{:.17g}", c.nu) + "}\n";
-      const std::string box = c.dim == 2 ? "{min: [0, 0], max: [0.1, 0.1]}"
-                                         : "{min: [0, 0, 0], max: [0.06, 0.06, 0.06]}";
-      yaml += "discretization: {spacing: 0.01, horizon_factor: 3.0, body: {box: " + box +
-              "}}\nsolver: {steps: 1}\n";
-      Model md = build_model(test::deck_from(yaml));
+      Model md = lps_fracture_model(c, c.dim == 2 ? 0.1 : 0.06);
       NodeSet& ns = md.nodes;
       const double eps = f * madenci_oterkus_s0(c, 70e9, 350, 0.03);
       for (std::size_t i = 0; i < ns.size(); ++i) {
