@@ -120,16 +120,20 @@ TEST(SurfaceCorrection, MomentMatchingGivesClassicalEnergyForEveryStrainNearA2DE
               moments.axial, moments.other);
   EXPECT_GT(none.axial, 0.3);      // an edge node misses about half its family
   EXPECT_GT(energy.other, 0.05);   // the energy method leaves shear and coupling off
+  // ... but cuts the axial deficit it is built on (measured to 0.49 of none in 2D, 0.56 in 3D)
+  EXPECT_LT(energy.axial, 0.6 * none.axial);
   EXPECT_LT(moments.axial, 1e-3);  // fixed point of the averaged factors: exact moments
   EXPECT_LT(moments.other, 1e-3);
 }
 
 TEST(SurfaceCorrection, MomentMatchingGivesClassicalEnergyForEveryStrainNearA3DFace) {
+  const Worst none = surface_errors(3, "false", 12);
   const Worst energy = surface_errors(3, "energy", 12);
   const Worst moments = surface_errors(3, "moments", 12);
-  std::printf("3D worst |W/W_cl - 1|: energy %.4f/%.4f, moments %.4f/%.4f\n", energy.axial,
-              energy.other, moments.axial, moments.other);
+  std::printf("3D worst |W/W_cl - 1|: none %.4f/%.4f, energy %.4f/%.4f, moments %.4f/%.4f\n",
+              none.axial, none.other, energy.axial, energy.other, moments.axial, moments.other);
   EXPECT_GT(energy.other, 0.05);
+  EXPECT_LT(energy.axial, 0.6 * none.axial);
   EXPECT_LT(moments.axial, 1e-3);
   EXPECT_LT(moments.other, 1e-3);
 }
