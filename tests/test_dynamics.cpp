@@ -354,7 +354,7 @@ TEST(Dynamics, TheDeckMemoryEstimateBoundsTheBuiltModelClosely) {
 // the two grips pull with equal and opposite forces, and the force is the plate's axial
 // stiffness times the strain between the grips, E t H (u_right - u_left) / L, L the distance
 // between the grips' inner edges (3% for the grips' non-local ends, delta / L = 1%, and the
-// surface correction's residual).
+// surface correction's residual); the grips' work equals the plate's energy K + U.
 TEST(Dynamics, GripReactionsBalanceAndMatchTheAxialStiffness) {
   const double E = 72e9, L0 = 0.3, H = 0.02, t = 0.005, grip = 0.003, du = 3e-5;
   const std::string yaml =
@@ -391,4 +391,9 @@ TEST(Dynamics, GripReactionsBalanceAndMatchTheAxialStiffness) {
               fr / expected, -fl / fr);
   EXPECT_NEAR(fr / expected, 1.0, 0.03) << fr << " " << expected;
   EXPECT_NEAR(-fl / fr, 1.0, 0.01) << fl << " " << fr;
+  // The grips' work (reaction times the velocity of the prescribed path) is what the plate holds.
+  std::vector<double> W;
+  const double KU = kinetic_energy(m.nodes) + strain_energy(m, W);
+  std::printf("grip work %.6e J, K + U %.6e J\n", vv.external_work(), KU);
+  EXPECT_NEAR(KU / vv.external_work(), 1.0, 1e-3);  // measured 1e-6
 }
