@@ -9,6 +9,7 @@
 #include "run/simulation.hpp"
 #include "setup/build_model.hpp"
 #include "input/deck_error.hpp"
+#include "solver/stable_time_step.hpp"
 #include "solver/velocity_verlet.hpp"
 #include "test_helpers.hpp"
 
@@ -396,4 +397,33 @@ TEST(Dynamics, GripReactionsBalanceAndMatchTheAxialStiffness) {
   const double KU = kinetic_energy(m.nodes) + strain_energy(m, W);
   std::printf("grip work %.6e J, K + U %.6e J\n", vv.external_work(), KU);
   EXPECT_NEAR(KU / vv.external_work(), 1.0, 1e-3);  // measured 1e-6
+}
+
+// The stable-step bound over listed nodes (what an event checks on the rows it rebuilt) is the
+// smallest per-node Silling-Askari bound among them: over every node it is the model's bound, over
+// any subset it is no smaller, and a subset holding the limiting node gives it again. A plate
+// with a refined band has per-node bounds that differ by level (the band's are about half).
+TEST(Dynamics, StableStepOverListedNodesIsTheSmallestOfTheirBounds) {
+  const Model m = build_model(test::deck_from(
+      "model: {dimension: 2}\n"
+      "material: {youngs_modulus: 72.0e9, density: 2440}\n"
+      "discretization: {spacing: 1.0e-3, horizon_factor: 3, body: {box: {min: [0, 0], max: [0.04, 0.02]}}}\n"
+      "damage: {enabled: false}\n"
+      "adapt: {max_level: 1, initial_refinement: [{region: {box: {min: [0.015, 0], max: [0.025, 0.02]}}, level: 1}]}\n"
+      "solver: {steps: 1}\n"));
+  const StableStep all = stable_time_step(m);
+  std::vector<std::uint32_t> active, coarse;
+  for (std::uint32_t i = 0; i < m.nodes.size(); ++i) {
+    if (!(m.nodes.flags[i] & kActive)) continue;
+    active.push_back(i);
+    if (m.nodes.level[i] == 0) coarse.push_back(i);
+  }
+  ASSERT_FALSE(coarse.empty());
+  ASSERT_LT(coarse.size(), active.size());
+  const StableStep listed = stable_time_step(m, active);
+  EXPECT_EQ(listed.dt, all.dt);
+  EXPECT_EQ(listed.node, all.node);
+  const StableStep c = stable_time_step(m, coarse);
+  EXPECT_GT(c.dt, 1.5 * all.dt);  // the coarse rows are not the limiting ones
+  EXPECT_EQ(stable_time_step(m, {c.node, all.node}).dt, all.dt);
 }
