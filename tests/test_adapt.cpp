@@ -799,3 +799,28 @@ TEST(Adapt, ReanchoredChildrenKeepMomentumInAnUnbalancedField) {
     EXPECT_LT(std::abs(after.momentum[d] - before.momentum[d]), 1e-12 * before.momentum_scale)
         << "component " << d;
 }
+
+// Cracks stay fine: a parent whose child lost a bond to the dynamics (not to a pre-crack) is not
+// coarsenable, while its quiet neighbours are.
+TEST(Adapt, AParentWhoseChildHasADynamicallyBrokenBondIsNotCoarsened) {
+  Model m = build_model(test::deck_from(
+      "model: {dimension: 2}\n"
+      "material: {youngs_modulus: 72.0e9, density: 2440, critical_stretch: 1.0e-3}\n"
+      "discretization: {spacing: 1.0e-3, horizon_factor: 3, body: {box: {min: [0, 0], max: [0.02, 0.02]}}}\n"
+      "adapt: {max_level: 1, energy_trigger: 0.5, coarsen: true, visibility: false,"
+      " initial_refinement: [{region: {box: {min: [0.006, 0.006], max: [0.014, 0.014]}}, level: 1}]}\n"
+      "solver: {steps: 1}\n"));
+  NodeSet& ns = m.nodes;
+  const auto before = coarsenable_parents(m);
+  ASSERT_GT(before.size(), 4u);
+  // Break one bond of a child of the first coarsenable parent, as a step would.
+  std::uint32_t child = 0;
+  for (std::uint32_t i = 0; i < ns.size(); ++i)
+    if (ns.parent[i] == static_cast<std::int32_t>(before[0])) child = i;
+  const std::uint64_t k = m.bonds.begin(child);
+  m.bonds.beta[k] = -std::abs(m.bonds.beta[k]);
+  ns.broken_weight[child] += ns.volume[m.bonds.neighbor[k]];
+  const auto after = coarsenable_parents(m);
+  EXPECT_EQ(after.size(), before.size() - 1);
+  EXPECT_EQ(std::count(after.begin(), after.end(), before[0]), 0);
+}
