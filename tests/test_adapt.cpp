@@ -824,3 +824,30 @@ TEST(Adapt, AParentWhoseChildHasADynamicallyBrokenBondIsNotCoarsened) {
   EXPECT_EQ(after.size(), before.size() - 1);
   EXPECT_EQ(std::count(after.begin(), after.end(), before[0]), 0);
 }
+
+#include "adapt/triggers.hpp"
+
+// W_max of the energy trigger is taken over the nodes that can refine: a clamped or driven edge
+// (which never refines) with a large boundary-layer energy must not switch the trigger off.
+TEST(Adapt, EnergyTriggerIgnoresTheEnergyOfDrivenNodes) {
+  const Deck dk = test::deck_from(
+      "model: {dimension: 2}\n"
+      "material: {youngs_modulus: 72.0e9, density: 2440, critical_stretch: 1.0e-3}\n"
+      "discretization: {spacing: 1.0e-3, horizon_factor: 3, body: {box: {min: [0, 0], max: [0.02, 0.02]}}}\n"
+      "boundary_conditions:\n"
+      "  - {name: clamp, region: {box: {min: [0, 0], max: [0.002, 0.02]}}, velocity: [0, 0]}\n"
+      "adapt: {max_level: 1, energy_trigger: 0.5}\n"
+      "solver: {steps: 1}\n");
+  const Model m = build_model(dk);
+  const NodeSet& ns = m.nodes;
+  std::vector<double> W(ns.size(), 0.1);
+  std::uint32_t hot = 0;
+  for (std::uint32_t i = 0; i < ns.size(); ++i) {
+    if (ns.flags[i] & kBoundary) W[i] = 100.0;
+    if (std::abs(ns.x[0][i] - 0.0105) < 1e-9 && std::abs(ns.x[1][i] - 0.0105) < 1e-9) hot = i;
+  }
+  W[hot] = 1.0;
+  const std::vector<std::uint32_t> ids = energy_trigger(m, W, 0.5, refinable_nodes(m, dk.adapt));
+  ASSERT_EQ(ids.size(), 1u);
+  EXPECT_EQ(ids[0], hot);
+}
