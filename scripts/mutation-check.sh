@@ -3,11 +3,11 @@
 # to a scratch copy of the working tree, rebuilds, runs the test suite and prints whether a test
 # failed (killed) or none did (survived), with the failing tests.
 #
-#   bash scripts/mutation-check.sh [--only ID,ID...] [--full] [--work DIR] [--list FILE]
+#   bash scripts/mutation-check.sh [--only ID,ID...] [--killers | --full] [--work DIR] [--list FILE]
 #
 # The fast tests (everything but validation_*) run first, up to the first failure; the validations
-# only for a mutant the fast tests let through. --full runs the whole suite for every mutant and
-# lists every killing test. A mutant
+# only for a mutant the fast tests let through. --killers runs every fast test (so every fast test
+# that kills it is listed), --full the whole suite, validations included. A mutant
 # whose pattern does not match exactly once stops the script (the list is stale); one that does
 # not compile is reported as stillborn and left out of the score. Results also go to
 # WORK/results.tsv. Takes about 1-3 minutes per mutant on 2 cores (more with --full).
@@ -18,13 +18,15 @@ list=scripts/mutants.tsv
 work=${TMPDIR:-/tmp}/periadapt-mutants
 only=""
 full=0
+killers=0
 while (($#)); do
   case $1 in
     --only) only=$2; shift 2 ;;
     --full) full=1; shift ;;
+    --killers) killers=1; shift ;;
     --work) work=$2; shift 2 ;;
     --list) list=$2; shift 2 ;;
-    *) echo "usage: $0 [--only ID,ID...] [--full] [--work DIR] [--list FILE]" >&2; exit 2 ;;
+    *) echo "usage: $0 [--only ID,ID...] [--killers | --full] [--work DIR] [--list FILE]" >&2; exit 2 ;;
   esac
 done
 list=$(realpath "$list")
@@ -78,6 +80,9 @@ while IFS=$'\t' read -r id file subst desc; do
   else
     if ((full)); then
       tests=$(failed_tests)
+    elif ((killers)); then
+      tests=$(failed_tests -E '^validation_')
+      [[ -z $tests ]] && tests=$(failed_tests --stop-on-failure -R '^validation_')
     else
       tests=$(failed_tests --stop-on-failure -E '^validation_')
       [[ -z $tests ]] && tests=$(failed_tests --stop-on-failure -R '^validation_')

@@ -851,3 +851,29 @@ TEST(Adapt, EnergyTriggerIgnoresTheEnergyOfDrivenNodes) {
   ASSERT_EQ(ids.size(), 1u);
   EXPECT_EQ(ids[0], hot);
 }
+
+// A deck that gives the critical stretch instead of G0 keeps the fracture energy that s0 implies
+// at the base horizon: s0 ~ delta^(-1/2), so delta-scaled children of level l take s0 2^(l/2);
+// m-scaled ones (the horizon kept) keep s0.
+TEST(Adapt, ChildrenOfAGivenCriticalStretchKeepItsFractureEnergy) {
+  for (const char* scaling : {"delta", "m"}) {
+    SCOPED_TRACE(scaling);
+    const Model m = build_model(test::deck_from(
+        std::string("model: {dimension: 2}\n"
+                    "material: {youngs_modulus: 72.0e9, density: 2440, critical_stretch: 1.0e-3}\n"
+                    "discretization: {spacing: 1.0e-3, horizon_factor: 3, body: {box: {min: [0, 0], max: [0.02, 0.02]}}}\n"
+                    "adapt: {max_level: 2, scaling: ") + scaling +
+        ", initial_refinement: [{region: {box: {min: [0.008, 0.008], max: [0.012, 0.012]}}, level: 2}]}\n"
+        "solver: {steps: 1}\n"));
+    int seen[3] = {0, 0, 0};
+    for (std::size_t i = 0; i < m.nodes.size(); ++i) {
+      if (!(m.nodes.flags[i] & kActive)) continue;
+      const int l = m.nodes.level[i];
+      ++seen[l];
+      const double want = std::string(scaling) == "delta" ? 1e-3 * std::pow(2.0, 0.5 * l) : 1e-3;
+      EXPECT_NEAR(m.nodes.critical_stretch[i] / want, 1.0, 1e-12) << "level " << l;
+    }
+    EXPECT_GT(seen[1], 0);
+    EXPECT_GT(seen[2], 0);
+  }
+}
