@@ -231,7 +231,7 @@ TEST(DeckErrors, EveryLoaderCheckRefusesItsCaseNamingTheKey) {
       {{"discretization.body={sphere: {center: [0, 0, 0], radius: 1}}"}, "discretization.body.sphere", "3D"},
       {{"discretization.body={box: {min: [0, 0], max: [1, 1]}, disk: {center: [0, 0], radius: 1}}"},
        "discretization.body", "exactly one"},
-      {{"discretization.body={polygon: [[0, 0], [0.1, 0.04], [0.1, 0], [0, 0.04]]}"},
+      {{"discretization.body={polygon: [[0, 0], [0.1, 0.04], [0.1, 0], [0, 0.03]]}"},
        "discretization.body.polygon", "simple"},
       {{"discretization.body={polygon: [[0, 0], [0.1, 0]]}"}, "discretization.body.polygon", "3 ... 1000"},
       {{"discretization.body={polygon: [[0, 0], [0.1, 0], [0.2, 0]]}"}, "discretization.body.polygon", "no area"},

@@ -40,10 +40,14 @@ std::vector<Vec3> parse_polygon(Section& s) {
     }
     v.push_back(p);
   }
-  double area2 = 0;
-  for (std::size_t i = 0, j = v.size() - 1; i < v.size(); j = i++)
+  // Twice the signed area, against the bounding box's (round-off of collinear vertices aside).
+  double area2 = 0, lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+  for (std::size_t i = 0, j = v.size() - 1; i < v.size(); j = i++) {
     area2 += v[j][0] * v[i][1] - v[i][0] * v[j][1];
-  if (!(std::abs(area2) > 0)) s.fail("polygon", "the polygon has no area");
+    for (int d = 0; d < 2; ++d) lo[d] = std::min(lo[d], v[i][d]), hi[d] = std::max(hi[d], v[i][d]);
+  }
+  if (!(std::abs(area2) > 1e-12 * (hi[0] - lo[0]) * (hi[1] - lo[1])))
+    s.fail("polygon", "the polygon has no area");
   const std::size_t m = v.size();
   for (std::size_t i = 0; i < m; ++i)
     for (std::size_t k = i + 1; k < m; ++k) {
