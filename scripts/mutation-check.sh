@@ -32,7 +32,9 @@ done
 list=$(realpath "$list")
 jobs=$(nproc)
 
-# Scratch copy of the working tree (tracked and untracked, not ignored), built once.
+# Scratch copy of the working tree (tracked and untracked, not ignored), built once; an exact copy
+# (tar keeps the files' times, so the scratch build only rebuilds what changed).
+rm -rf "$work/src"
 mkdir -p "$work/src"
 git ls-files -co --exclude-standard -z | tar -cf - --null -T - | tar -xf - -C "$work/src"
 cmake -S "$work/src" -B "$work/build" -DCMAKE_BUILD_TYPE=Release -DPERIADAPT_BUILD_BENCH=OFF > /dev/null
