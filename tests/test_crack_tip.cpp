@@ -68,6 +68,9 @@ TEST(CrackTip, GrowthCountsFromThePreCracksOwnBandWhenItReachesPastTheOrigin) {
   ASSERT_TRUE(tr.observe(ns, 2.0));
   EXPECT_EQ(tr.first_advance_time(), 2.0);
   EXPECT_FALSE(tr.initiation_time());  // 1 past the band's end, less than `advance`
+  crack_up_to(ns, 6.5);                 // 2.5 past the origin but only 2 past the band's end
+  ASSERT_TRUE(tr.observe(ns, 2.5));
+  EXPECT_FALSE(tr.initiation_time());
   crack_up_to(ns, 7.5);                 // 3 past it
   ASSERT_TRUE(tr.observe(ns, 3.0));
   EXPECT_EQ(tr.initiation_time(), 3.0);
