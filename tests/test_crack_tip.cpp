@@ -199,3 +199,24 @@ TEST(RefinementCoverage, CountsRefinedNodesAwayFromCracksAndCracksLeftCoarse) {
   EXPECT_EQ(none.refined_far_from_cracks, 4u);
   EXPECT_EQ(none.cracked, 0u);
 }
+
+// The mean tip speed (Eq. 6.1 windows) averages the windows from initiation to the last one in
+// which the tip moved: here 1 and 3 (spacing per window), so 2; the window after the tip stopped
+// does not count.
+TEST(CrackTip, MeanSpeedAveragesTheWindowsFromInitiationToTheLastMovingOne) {
+  CrackTipOptions o;
+  o.origin = {4.0, 0.0, 0.0};
+  o.direction = {1.0, 0.0, 0.0};
+  o.advance = 0.5;
+  o.window = 1.0;
+  CrackTipTracker tr(o);
+  NodeSet ns = row();
+  const double tips[] = {3.5, 4.5, 5.5, 6.5, 9.5, 9.5};
+  for (int k = 0; k < 6; ++k) {
+    crack_up_to(ns, tips[k]);
+    ASSERT_TRUE(tr.observe(ns, k));
+  }
+  ASSERT_EQ(tr.initiation_time(), 2.0);
+  EXPECT_DOUBLE_EQ(tr.mean_speed(), 2.0);
+  EXPECT_DOUBLE_EQ(tr.max_speed(), 3.0);
+}
