@@ -8,8 +8,9 @@ spacings), damage-sum ratio, initiation time (first bond broken after the pre-cr
 active nodes and wall time as ratios to the fine run (smallest of --repeat alternating runs).
 
 usage: suite.py BUILD/periadapt OUT_DIR [--only a,b] [--repeat N] [--threads N] [--table FILE]
-                [--check] [--no-wall]
+                [--check] [--no-wall] [--decks DIR]
 --check: exit 1 unless every adaptive run meets the acceptance bounds below.
+--decks: the decks to run (default bench/agrs; e.g. a copy with another option set).
 --no-wall: leave the wall-time bound out of --check (CI: speed is measured by benchmarks, on a
            quiet machine, not asserted by tests).
 """
@@ -111,8 +112,9 @@ def main():
     ap.add_argument('--table', default='')
     ap.add_argument('--check', action='store_true')
     ap.add_argument('--no-wall', action='store_true')
+    ap.add_argument('--decks', default=DECKS)
     a = ap.parse_args()
-    names = sorted(f[:-5] for f in os.listdir(DECKS) if f.endswith('.yaml'))
+    names = sorted(f[:-5] for f in os.listdir(a.decks) if f.endswith('.yaml'))
     if a.only:
         names = [n for n in names if n in a.only.split(',')]
     os.makedirs(a.out, exist_ok=True)
@@ -121,7 +123,7 @@ def main():
              '|---|---|---|---|---|---|---|---|---|---|']
     failures = []
     for name in names:
-        text = open(os.path.join(DECKS, name + '.yaml')).read()
+        text = open(os.path.join(a.decks, name + '.yaml')).read()
         h = spacing_of(text) / 2
         res = {}
         for kind in ('coarse', 'fine', 'adaptive'):
