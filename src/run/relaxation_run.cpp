@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "analysis/energy.hpp"
+#include "run/resultants.hpp"
 #include "run/snapshot_fields.hpp"
 #include "input/deck_error.hpp"
 #include "io/vtu_writer.hpp"
@@ -33,7 +34,7 @@ RunResult run_relaxation(const Deck& dk, const RunOptions& opt) {
     if (dk.output.vtu) vtu = std::make_unique<VtuSeries>(dir, "snapshot");
     hist = StreamedOutput(dir + "/history.csv");
     hist << "load_step,load_factor,iterations,relative_residual,newly_broken,broken_bonds,"
-            "max_abs_displacement_m,strain_energy_J,wall_time_s\n";
+            "max_abs_displacement_m,strain_energy_J," + resultant_header(m) + "wall_time_s\n";
   }
   RelaxationOptions ro;
   ro.load_steps = dk.load_steps;
@@ -43,6 +44,11 @@ RunResult run_relaxation(const Deck& dk, const RunOptions& opt) {
   long iterations = 0;
   std::vector<double> W;
   RelaxationStepReport last;
+  // ns.f holds the internal forces of the relaxed state when a load step ends.
+  auto applied = [&](const BodyLoad& l) { return load_force(ns, l, l.amplitude(1e300) * last.load_factor); };
+  auto reaction = [&](const PrescribedMotion& p) {
+    return equilibrium_reaction(m, p, ns.f, last.load_factor);
+  };
   const bool ok = run_dynamic_relaxation(m, ro, [&](const RelaxationStepReport& r) {
     last = r;
     broken += r.newly_broken;
@@ -52,8 +58,9 @@ RunResult run_relaxation(const Deck& dk, const RunOptions& opt) {
       for (int d = 0; d < ns.dim; ++d) umax = std::max(umax, std::abs(ns.u[d][i]));
     const double U = strain_energy(m, W);
     if (hist.is_open())
-      hist << fmt::format("{},{:.6g},{},{:.3e},{},{},{:.9e},{:.9e},{:.3f}\n", r.load_step,
+      hist << fmt::format("{},{:.6g},{},{:.3e},{},{},{:.9e},{:.9e},{}{:.3f}\n", r.load_step,
                           r.load_factor, r.iterations, r.residual, r.newly_broken, broken, umax, U,
+                          resultant_columns(m, applied, reaction),
                           std::chrono::duration<double>(clock::now() - t_start).count());
     if (vtu) vtu->write(r.load_factor, ns, snapshot_fields(m, W));
     if (!opt.quiet)
@@ -72,8 +79,11 @@ RunResult run_relaxation(const Deck& dk, const RunOptions& opt) {
   j["nodes"] = {{"initial", ns.size()}, {"final", ns.size()}};
   j["bonds"] = m.bonds.num_bonds();
   j["broken_bonds"] = broken;
+  j["resultants"] = resultants_json(m, applied, reaction);
   j["wall_time_s"] = std::chrono::duration<double>(clock::now() - t_start).count();
   if (opt.write_files) {
+    if (dk.output.load_displacement)
+      write_load_displacement_png(dir, hist.text_so_far(), *dk.output.load_displacement, m);
     hist.finish();
     write_file_atomically(dir + "/summary.json", [&](std::ostream& o) { o << j.dump(2) << "\n"; });
   }

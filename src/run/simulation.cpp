@@ -1,5 +1,6 @@
 #include "run/simulation.hpp"
 #include "run/snapshot_fields.hpp"
+#include "run/resultants.hpp"
 #include "io/line_plot.hpp"
 #include "adapt/adaptor.hpp"
 
@@ -57,86 +58,10 @@ void remove_earlier_run_outputs(const std::string& dir) {
   }
 }
 
-// history.csv's resultants: per load its applied force and the mean displacement of its nodes,
-// per boundary condition the reaction of its supports and the mean displacement of its nodes
-// (volume-weighted, active nodes), so that load-displacement curves can be drawn.
-std::string column_name(const std::string& prefix, const std::string& name) {
-  std::string s = prefix;
-  for (char c : name) s += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
-  return s;
-}
-
-std::string resultant_header(const Model& m) {
-  std::string h;
-  const char* axes = "xyz";
-  auto add = [&](const std::string& base) {
-    for (const char* what : {"_f", "_u"})
-      for (int d = 0; d < m.nodes.dim; ++d)
-        h += fmt::format("{}{}{}_{}", base, what, axes[d], what[1] == 'f' ? "N," : "m,");
-  };
-  for (const BodyLoad& l : m.loads) add(column_name("load_", l.name));
-  for (const PrescribedMotion& p : m.motions) add(column_name("bc_", p.name));
-  return h;
-}
-
-// output.load_displacement: two columns of the history drawn against each other.
-void write_load_displacement_png(const std::string& dir, const std::string& history,
-                                 const LoadDisplacementPlot& plot, const Model& m) {
-  bool is_bc = false;
-  for (const PrescribedMotion& p : m.motions) is_bc = is_bc || p.name == plot.name;
-  const std::string base = column_name(is_bc ? "bc_" : "load_", plot.name);
-  const char axis = static_cast<char>('x' + plot.component);
-  const std::string fcol = fmt::format("{}_f{}_N", base, axis), ucol = fmt::format("{}_u{}_m", base, axis);
-  std::istringstream in(history);
-  std::string line;
-  std::getline(in, line);
-  auto split = [](const std::string& l) {
-    std::vector<std::string> v;
-    std::stringstream ss(l);
-    for (std::string c; std::getline(ss, c, ',');) v.push_back(c);
-    return v;
-  };
-  const std::vector<std::string> head = split(line);
-  const auto fi = std::find(head.begin(), head.end(), fcol) - head.begin();
-  const auto ui = std::find(head.begin(), head.end(), ucol) - head.begin();
-  if (fi >= static_cast<long>(head.size()) || ui >= static_cast<long>(head.size())) return;
-  PlotSeries ps{plot.name, {}, {}};
-  while (std::getline(in, line)) {
-    const std::vector<std::string> row = split(line);
-    if (row.size() != head.size()) continue;
-    ps.x.push_back(std::stod(row[static_cast<std::size_t>(ui)]) * 1e3);
-    ps.y.push_back(std::stod(row[static_cast<std::size_t>(fi)]));
-  }
-  PlotOptions po;
-  po.title = fmt::format("{}: {} force against mean {} displacement", plot.name,
-                         is_bc ? "reaction" : "applied", axis);
-  po.x_label = fmt::format("u{} (mm)", axis);
-  po.y_label = fmt::format("F{} (N)", axis);
-  write_line_plot(dir + "/load_displacement.png", {ps}, po);
-}
-
-std::array<double, 3> mean_displacement(const NodeSet& ns, const std::vector<std::uint32_t>& nodes) {
-  std::array<double, 3> u{0, 0, 0};
-  double vol = 0;
-  for (std::uint32_t i : nodes) {
-    if (!(ns.flags[i] & kActive)) continue;
-    vol += ns.volume[i];
-    for (int d = 0; d < ns.dim; ++d) u[d] += ns.u[d][i] * ns.volume[i];
-  }
-  for (double& c : u) c = vol > 0 ? c / vol : 0.0;
-  return u;
-}
-
 std::string resultant_columns(const Model& m, const VelocityVerlet& vv) {
-  std::string c;
-  auto add = [&](const std::array<double, 3>& F, const std::array<double, 3>& u) {
-    for (int d = 0; d < m.nodes.dim; ++d) c += fmt::format("{:.9e},", F[d]);
-    for (int d = 0; d < m.nodes.dim; ++d) c += fmt::format("{:.9e},", u[d]);
-  };
-  for (const BodyLoad& l : m.loads) add(vv.applied_force(l), mean_displacement(m.nodes, l.nodes));
-  for (const PrescribedMotion& p : m.motions)
-    add(vv.reaction_force(p), mean_displacement(m.nodes, p.nodes));
-  return c;
+  return periadapt::resultant_columns(
+      m, [&](const BodyLoad& l) { return vv.applied_force(l); },
+      [&](const PrescribedMotion& p) { return vv.reaction_force(p); });
 }
 
 std::size_t active_count(const NodeSet& ns) {

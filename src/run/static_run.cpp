@@ -9,6 +9,7 @@
 #include <fstream>
 
 #include "analysis/energy.hpp"
+#include "run/resultants.hpp"
 #include "run/snapshot_fields.hpp"
 #include "input/deck_error.hpp"
 #include "io/vtu_writer.hpp"
@@ -45,6 +46,22 @@ RunResult run_static(const Deck& dk, const RunOptions& opt) {
 
   std::vector<double> W;
   const double U = strain_energy(m, W);
+  // Reactions from the linear operator that was solved (the nonlinear forces at this state
+  // differ by the order of the strain), so that they balance the loads to the solver's residual.
+  std::array<std::vector<double>, 3> f_int;
+  {
+    const auto K = assemble_bond_stiffness(
+        ns, m.bonds, m.material.shape,
+        dk.dual_horizon ? BondPairing::DualHorizon : BondPairing::SourceHorizon);
+    const int D = ns.dim;
+    Eigen::VectorXd u(static_cast<Eigen::Index>(D * ns.size()));
+    for (std::size_t i = 0; i < ns.size(); ++i)
+      for (int d = 0; d < D; ++d) u[static_cast<Eigen::Index>(D * i + d)] = ns.u[d][i];
+    const Eigen::VectorXd f = K * u;
+    for (int d = 0; d < 3; ++d) f_int[d].assign(ns.size(), 0.0);
+    for (std::size_t i = 0; i < ns.size(); ++i)
+      for (int d = 0; d < D; ++d) f_int[d][i] = -f[static_cast<Eigen::Index>(D * i + d)];
+  }
   nlohmann::json& j = res.summary;
   j["deck"] = dk.file;
   j["status"] = "completed";
@@ -67,6 +84,9 @@ RunResult run_static(const Deck& dk, const RunOptions& opt) {
   for (std::size_t i = 0; i < ns.size(); ++i)
     for (int d = 0; d < ns.dim; ++d) umax = std::max(umax, std::abs(ns.u[d][i]));
   j["max_abs_displacement_m"] = umax;
+  j["resultants"] = resultants_json(
+      m, [&](const BodyLoad& l) { return load_force(ns, l, l.amplitude(1e300)); },
+      [&](const PrescribedMotion& p) { return equilibrium_reaction(m, p, f_int, 1.0); });
   j["wall_time_s"] = std::chrono::duration<double>(clock::now() - t_start).count();
   if (opt.write_files) {
     const std::string dir = opt.out_dir ? *opt.out_dir : dk.output.directory;

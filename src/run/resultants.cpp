@@ -1,0 +1,146 @@
+#include "run/resultants.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cctype>
+#include <sstream>
+
+#include "io/line_plot.hpp"
+
+namespace periadapt {
+
+namespace {
+
+std::string column_name(const std::string& prefix, const std::string& name) {
+  std::string s = prefix;
+  for (char c : name) s += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+  return s;
+}
+
+}  // namespace
+
+std::string resultant_header(const Model& m) {
+  std::string h;
+  const char* axes = "xyz";
+  auto add = [&](const std::string& base) {
+    for (const char* what : {"_f", "_u"})
+      for (int d = 0; d < m.nodes.dim; ++d)
+        h += fmt::format("{}{}{}_{}", base, what, axes[d], what[1] == 'f' ? "N," : "m,");
+  };
+  for (const BodyLoad& l : m.loads) add(column_name("load_", l.name));
+  for (const PrescribedMotion& p : m.motions) add(column_name("bc_", p.name));
+  return h;
+}
+
+Vec3Fn mean_displacement(const NodeSet& ns, const std::vector<std::uint32_t>& nodes) {
+  Vec3Fn u{0, 0, 0};
+  double vol = 0;
+  for (std::uint32_t i : nodes) {
+    if (!(ns.flags[i] & kActive)) continue;
+    vol += ns.volume[i];
+    for (int d = 0; d < ns.dim; ++d) u[d] += ns.u[d][i] * ns.volume[i];
+  }
+  for (double& c : u) c = vol > 0 ? c / vol : 0.0;
+  return u;
+}
+
+std::string resultant_columns(const Model& m,
+                              const std::function<Vec3Fn(const BodyLoad&)>& applied,
+                              const std::function<Vec3Fn(const PrescribedMotion&)>& reaction) {
+  std::string c;
+  auto add = [&](const Vec3Fn& F, const Vec3Fn& u) {
+    for (int d = 0; d < m.nodes.dim; ++d) c += fmt::format("{:.9e},", F[d]);
+    for (int d = 0; d < m.nodes.dim; ++d) c += fmt::format("{:.9e},", u[d]);
+  };
+  for (const BodyLoad& l : m.loads) add(applied(l), mean_displacement(m.nodes, l.nodes));
+  for (const PrescribedMotion& p : m.motions) add(reaction(p), mean_displacement(m.nodes, p.nodes));
+  return c;
+}
+
+nlohmann::json resultants_json(const Model& m,
+                               const std::function<Vec3Fn(const BodyLoad&)>& applied,
+                               const std::function<Vec3Fn(const PrescribedMotion&)>& reaction) {
+  auto vec = [&](const Vec3Fn& v) {
+    return std::vector<double>(v.begin(), v.begin() + m.nodes.dim);
+  };
+  nlohmann::json j = {{"loads", nlohmann::json::object()},
+                      {"boundary_conditions", nlohmann::json::object()}};
+  for (const BodyLoad& l : m.loads)
+    j["loads"][l.name] = {{"force_N", vec(applied(l))},
+                          {"mean_displacement_m", vec(mean_displacement(m.nodes, l.nodes))}};
+  for (const PrescribedMotion& p : m.motions)
+    j["boundary_conditions"][p.name] = {
+        {"reaction_N", vec(reaction(p))},
+        {"mean_displacement_m", vec(mean_displacement(m.nodes, p.nodes))}};
+  return j;
+}
+
+Vec3Fn load_force(const NodeSet& ns, const BodyLoad& load, double amplitude) {
+  double volume = 0;
+  for (std::uint32_t i : load.nodes)
+    if (ns.flags[i] & kActive) volume += ns.volume[i];
+  return {amplitude * load.density[0] * volume, amplitude * load.density[1] * volume,
+          amplitude * load.density[2] * volume};
+}
+
+Vec3Fn equilibrium_reaction(const Model& m, const PrescribedMotion& pm,
+                            const std::array<std::vector<double>, 3>& internal,
+                            double load_amplitude_factor) {
+  const NodeSet& ns = m.nodes;
+  std::vector<char> member(ns.size(), 0);
+  for (std::uint32_t i : pm.nodes) member[i] = 1;
+  // Body-force densities at the region's nodes (a support may also carry a load).
+  std::array<std::vector<double>, 3> body;
+  for (auto& b : body) b.assign(ns.size(), 0.0);
+  for (const BodyLoad& l : m.loads) {
+    const double amp = l.amplitude(1e300) * load_amplitude_factor;
+    for (std::uint32_t i : l.nodes)
+      if (member[i])
+        for (int d = 0; d < ns.dim; ++d) body[d][i] += amp * l.density[d];
+  }
+  Vec3Fn R{0, 0, 0};
+  for (std::uint32_t i : pm.nodes) {
+    if (!(ns.flags[i] & kActive)) continue;
+    for (int d = 0; d < ns.dim; ++d)
+      if (pm.component[d]) R[d] -= (internal[d][i] + body[d][i]) * ns.volume[i];
+  }
+  return R;
+}
+
+void write_load_displacement_png(const std::string& dir, const std::string& history,
+                                 const LoadDisplacementPlot& plot, const Model& m) {
+  bool is_bc = false;
+  for (const PrescribedMotion& p : m.motions) is_bc = is_bc || p.name == plot.name;
+  const std::string base = column_name(is_bc ? "bc_" : "load_", plot.name);
+  const char axis = static_cast<char>('x' + plot.component);
+  const std::string fcol = fmt::format("{}_f{}_N", base, axis), ucol = fmt::format("{}_u{}_m", base, axis);
+  std::istringstream in(history);
+  std::string line;
+  std::getline(in, line);
+  auto split = [](const std::string& l) {
+    std::vector<std::string> v;
+    std::stringstream ss(l);
+    for (std::string c; std::getline(ss, c, ',');) v.push_back(c);
+    return v;
+  };
+  const std::vector<std::string> head = split(line);
+  const auto fi = std::find(head.begin(), head.end(), fcol) - head.begin();
+  const auto ui = std::find(head.begin(), head.end(), ucol) - head.begin();
+  if (fi >= static_cast<long>(head.size()) || ui >= static_cast<long>(head.size())) return;
+  PlotSeries ps{plot.name, {}, {}};
+  while (std::getline(in, line)) {
+    const std::vector<std::string> row = split(line);
+    if (row.size() != head.size()) continue;
+    ps.x.push_back(std::stod(row[static_cast<std::size_t>(ui)]) * 1e3);
+    ps.y.push_back(std::stod(row[static_cast<std::size_t>(fi)]));
+  }
+  PlotOptions po;
+  po.title = fmt::format("{}: {} force against mean {} displacement", plot.name,
+                         is_bc ? "reaction" : "applied", axis);
+  po.x_label = fmt::format("u{} (mm)", axis);
+  po.y_label = fmt::format("F{} (N)", axis);
+  write_line_plot(dir + "/load_displacement.png", {ps}, po);
+}
+
+}  // namespace periadapt
