@@ -33,8 +33,8 @@ std::string resultant_header(const Model& m) {
   return h;
 }
 
-Vec3Fn mean_displacement(const NodeSet& ns, const std::vector<std::uint32_t>& nodes) {
-  Vec3Fn u{0, 0, 0};
+Vec3 mean_displacement(const NodeSet& ns, const std::vector<std::uint32_t>& nodes) {
+  Vec3 u{0, 0, 0};
   double vol = 0;
   for (std::uint32_t i : nodes) {
     if (!(ns.flags[i] & kActive)) continue;
@@ -46,10 +46,10 @@ Vec3Fn mean_displacement(const NodeSet& ns, const std::vector<std::uint32_t>& no
 }
 
 std::string resultant_columns(const Model& m,
-                              const std::function<Vec3Fn(const BodyLoad&)>& applied,
-                              const std::function<Vec3Fn(const PrescribedMotion&)>& reaction) {
+                              const std::function<Vec3(const BodyLoad&)>& applied,
+                              const std::function<Vec3(const PrescribedMotion&)>& reaction) {
   std::string c;
-  auto add = [&](const Vec3Fn& F, const Vec3Fn& u) {
+  auto add = [&](const Vec3& F, const Vec3& u) {
     for (int d = 0; d < m.nodes.dim; ++d) c += fmt::format("{:.9e},", F[d]);
     for (int d = 0; d < m.nodes.dim; ++d) c += fmt::format("{:.9e},", u[d]);
   };
@@ -59,9 +59,9 @@ std::string resultant_columns(const Model& m,
 }
 
 nlohmann::json resultants_json(const Model& m,
-                               const std::function<Vec3Fn(const BodyLoad&)>& applied,
-                               const std::function<Vec3Fn(const PrescribedMotion&)>& reaction) {
-  auto vec = [&](const Vec3Fn& v) {
+                               const std::function<Vec3(const BodyLoad&)>& applied,
+                               const std::function<Vec3(const PrescribedMotion&)>& reaction) {
+  auto vec = [&](const Vec3& v) {
     return std::vector<double>(v.begin(), v.begin() + m.nodes.dim);
   };
   nlohmann::json j = {{"loads", nlohmann::json::object()},
@@ -76,7 +76,7 @@ nlohmann::json resultants_json(const Model& m,
   return j;
 }
 
-Vec3Fn load_force(const NodeSet& ns, const BodyLoad& load, double amplitude) {
+Vec3 load_force(const NodeSet& ns, const BodyLoad& load, double amplitude) {
   double volume = 0;
   for (std::uint32_t i : load.nodes)
     if (ns.flags[i] & kActive) volume += ns.volume[i];
@@ -84,7 +84,7 @@ Vec3Fn load_force(const NodeSet& ns, const BodyLoad& load, double amplitude) {
           amplitude * load.density[2] * volume};
 }
 
-Vec3Fn equilibrium_reaction(const Model& m, const PrescribedMotion& pm,
+Vec3 equilibrium_reaction(const Model& m, const PrescribedMotion& pm,
                             const std::array<std::vector<double>, 3>& internal,
                             double load_amplitude_factor) {
   const NodeSet& ns = m.nodes;
@@ -99,7 +99,7 @@ Vec3Fn equilibrium_reaction(const Model& m, const PrescribedMotion& pm,
       if (member[i])
         for (int d = 0; d < ns.dim; ++d) body[d][i] += amp * l.density[d];
   }
-  Vec3Fn R{0, 0, 0};
+  Vec3 R{0, 0, 0};
   for (std::uint32_t i : pm.nodes) {
     if (!(ns.flags[i] & kActive)) continue;
     for (int d = 0; d < ns.dim; ++d)

@@ -10,35 +10,35 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/geometry.hpp"
 #include "input/deck.hpp"
 #include "model/model.hpp"
 
 namespace periadapt {
 
-using Vec3Fn = std::array<double, 3>;
 
 // "load_NAME_fx_N,load_NAME_ux_m,...,bc_NAME_fx_N,..." with a trailing comma.
 std::string resultant_header(const Model& m);
 
 // The values under resultant_header, with a trailing comma.
 std::string resultant_columns(const Model& m,
-                              const std::function<Vec3Fn(const BodyLoad&)>& applied,
-                              const std::function<Vec3Fn(const PrescribedMotion&)>& reaction);
+                              const std::function<Vec3(const BodyLoad&)>& applied,
+                              const std::function<Vec3(const PrescribedMotion&)>& reaction);
 
 // {"loads": {NAME: {force_N, mean_displacement_m}}, "boundary_conditions": {...}}.
 nlohmann::json resultants_json(const Model& m,
-                               const std::function<Vec3Fn(const BodyLoad&)>& applied,
-                               const std::function<Vec3Fn(const PrescribedMotion&)>& reaction);
+                               const std::function<Vec3(const BodyLoad&)>& applied,
+                               const std::function<Vec3(const PrescribedMotion&)>& reaction);
 
-Vec3Fn mean_displacement(const NodeSet& ns, const std::vector<std::uint32_t>& nodes);
+Vec3 mean_displacement(const NodeSet& ns, const std::vector<std::uint32_t>& nodes);
 
 // A load's force at the given amplitude: amplitude x density x volume of its active nodes.
-Vec3Fn load_force(const NodeSet& ns, const BodyLoad& load, double amplitude);
+Vec3 load_force(const NodeSet& ns, const BodyLoad& load, double amplitude);
 
 // In equilibrium the supports balance what the other forces leave at their nodes: the reaction
 // is minus the sum over the region's active nodes and constrained components of
 // (internal + body force density) x volume. `internal`: force densities per component.
-Vec3Fn equilibrium_reaction(const Model& m, const PrescribedMotion& pm,
+Vec3 equilibrium_reaction(const Model& m, const PrescribedMotion& pm,
                             const std::array<std::vector<double>, 3>& internal,
                             double load_amplitude_factor);
 
