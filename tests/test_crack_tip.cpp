@@ -137,6 +137,34 @@ TEST(CrackTip, BranchingIsTracedBackToTheForkAndTimedWhenTheTipPassedIt) {
   EXPECT_DOUBLE_EQ(*tr.branching_time(), 1.0);
 }
 
+TEST(CrackTip, AForkIsNotTracedBackIntoATrunkTwoNodesThick) {
+  // The forked crack above with a trunk two nodes thick (y = 0 and 1, one spacing apart: one
+  // band, its nodes touch). Cross-section x = 4.5 shows gap 1 < 1.5 spacings, one band, so the
+  // fork stays at 5.0, passed at t = 1; a rule that split bands at every spacing would trace it
+  // back through the trunk to the origin.
+  NodeSet ns;
+  ns.dim = 2;
+  auto add = [&](double x, double y) { ns.family_weight[ns.append({x, y, 0.0}, 1.0, 1.0)] = 1.0; };
+  for (int k = 0; k < 5; ++k) add(0.5 + k, 0.0), add(0.5 + k, 1.0);
+  for (int k = 1; k <= 4; ++k) add(4.5 + k, k + 0.5), add(4.5 + k, -k + 0.5);
+  CrackTipOptions o;
+  o.origin = {0.0, 0.0, 0.0};
+  o.direction = {1.0, 0.0, 0.0};
+  o.advance = 1.0;
+  o.column = 1.0;
+  o.branch_gap = 5.0;
+  o.link = 1.5;
+  o.seed_radius = 1.0;
+  CrackTipTracker tr(o);
+  for (int t = 0; t <= 5; ++t) {
+    for (std::size_t i = 0; i < ns.size(); ++i) ns.broken_weight[i] = ns.x[0][i] <= 4.5 + t ? 0.5 : 0.0;
+    tr.observe(ns, t);
+  }
+  ASSERT_TRUE(tr.branching_time() && tr.separation_time());
+  EXPECT_DOUBLE_EQ((*tr.branching_point())[0], 5.0);
+  EXPECT_DOUBLE_EQ(*tr.branching_time(), 1.0);
+}
+
 TEST(CrackTip, TheCrackFoundBeforeIsExtendedOnlyWhileAllOfItStaysDamaged) {
   // The tracker starts each search from the crack it found last time. A damaged island ahead of
   // the tip must stay out until a chain reaches it, join when one does, and drop out again when

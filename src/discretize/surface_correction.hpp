@@ -28,9 +28,13 @@ enum class SurfaceCorrection { None, Energy, Moments };
 
 // `uniaxial_modulus`: the classical modulus M with W = M eps^2 / 2 under uniaxial strain
 // (P-wave modulus of the dimension and plane condition). 1D models use the energy method (both
-// methods coincide there).
+// methods coincide there). `state_based` (LPS): the moments method makes the moments of the
+// weighted volume (w x^2 V) isotropic relative to m instead of matching the bond-based energy,
+// which gives the LPS node the exact dilatation and the classical energy of every homogeneous
+// strain; the energy method is the bond-based one either way.
 void apply_surface_correction(const NodeSet& nodes, BondFamilies& bonds, InfluenceShape shape,
                               double uniaxial_modulus,
-                              SurfaceCorrection method = SurfaceCorrection::Energy);
+                              SurfaceCorrection method = SurfaceCorrection::Energy,
+                              bool state_based = false);
 
 }  // namespace periadapt

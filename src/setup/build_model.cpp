@@ -90,7 +90,7 @@ Model build_model(const Deck& dk) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   m.surface_correction = dk.surface_correction;
   apply_surface_correction(ns, m.bonds, dk.shape, p_wave_modulus(dk.dim, dk.plane, dk.E, mat.nu),
-                           m.surface_correction);
+                           m.surface_correction, mat.lps);
   m.precrack_bonds = apply_precracks(ns, m.bonds, dk.cracks);
   update_damage_weights(ns, m.bonds);
   m.quadrature = qs;
