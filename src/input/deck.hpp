@@ -49,6 +49,7 @@ struct OutputSpec {
   std::vector<double> png_times;      // damage pictures at these times (end time always)
   int png_width = 1200;
   bool vtu = true;
+  bool stress = false;                // stress, strain (and LPS dilatation) in the VTU
   // crack tip
   bool track_tip = false;
   double tip_threshold = 0.35;

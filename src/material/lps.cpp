@@ -1,5 +1,6 @@
 #include "material/lps.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace periadapt {
@@ -299,6 +300,40 @@ void lps_energy_density(const NodeSet& ns, const BondFamilies& bf, InfluenceShap
     by_dim_shape<EnergyOp<true>::Op>(ns.dim, shape, ns, bf, c, sc, W);
   else
     by_dim_shape<EnergyOp<false>::Op>(ns.dim, shape, ns, bf, c, sc, W);
+}
+
+void lps_stress(const NodeSet& ns, const BondFamilies& bf, InfluenceShape shape,
+                const LpsConstants& c, LpsScratch& sc, std::vector<double>& sigma,
+                bool mutual_only) {
+  lps_dilatation(ns, bf, shape, c, sc, mutual_only);
+  const std::size_t n = ns.size();
+  sigma.assign(9 * n, 0.0);
+#pragma omp parallel for schedule(dynamic, 256)
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!(ns.flags[i] & kActive) || !(sc.m[i] > 0)) continue;
+    const double* pk = &sc.packed[4 * i];
+    double* S = &sigma[9 * i];
+    for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {
+      const double b = bf.beta[k];
+      const std::uint32_t j = bf.neighbor[k];
+      const double x = bf.length(k);
+      if (!(b > 0.0) || (mutual_only && x > sc.reach[j])) continue;
+      double xi[3] = {0, 0, 0}, y[3] = {0, 0, 0}, r = 0;
+      for (int d = 0; d < ns.dim; ++d) {
+        xi[d] = ns.x[d][j] - ns.x[d][i];
+        y[d] = ns.cur[4 * j + d] - ns.cur[4 * i + d];
+        r += y[d] * y[d];
+      }
+      r = std::sqrt(r);
+      // t_ij of node i's own state: its energy density's derivative (no 1/2, unlike PMB's pair
+      // force, which both ends' densities share).
+      const double w = influence(shape, std::min(1.0, x * pk[3]));
+      const double t = w * (pk[0] * x + pk[1] * (r - x - pk[2] * x));
+      const double f = t * b * ns.volume[j] / r;
+      for (int a = 0; a < ns.dim; ++a)
+        for (int e = 0; e < ns.dim; ++e) S[3 * a + e] += f * y[a] * xi[e];
+    }
+  }
 }
 
 }  // namespace periadapt

@@ -70,4 +70,11 @@ void lps_energy_density(const NodeSet& nodes, const BondFamilies& bonds, Influen
                         const LpsConstants& c, LpsScratch& scratch, std::vector<double>& W,
                         bool mutual_only);
 
+// Stress of every node, sigma_i = dW_i / d(eps) = sum_j t_ij e_ij (x) xi_ij beta V_j over the
+// intact bonds of its state (the classical stress of a homogeneous strain where W_i is
+// classical); the dilatation is left in scratch.theta. Row-major 3 x 3 per node.
+void lps_stress(const NodeSet& nodes, const BondFamilies& bonds, InfluenceShape shape,
+                const LpsConstants& c, LpsScratch& scratch, std::vector<double>& sigma,
+                bool mutual_only);
+
 }  // namespace periadapt

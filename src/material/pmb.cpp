@@ -309,4 +309,34 @@ double pmb_stiffness_row(const NodeSet& nodes, const BondFamilies& bonds, Influe
   }
 }
 
+void pmb_stress(const NodeSet& ns, const BondFamilies& bf, InfluenceShape shape,
+                std::vector<double>& sigma, double thermal_strain) {
+  const std::size_t n = ns.size();
+  sigma.assign(9 * n, 0.0);
+#pragma omp parallel for schedule(dynamic, 256)
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!(ns.flags[i] & kActive)) continue;
+    double* S = &sigma[9 * i];
+    for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {
+      const double b = bf.beta[k];
+      if (!(b > 0.0)) continue;
+      const std::uint32_t j = bf.neighbor[k];
+      const double L = bf.length(k);
+      double xi[3] = {0, 0, 0}, y[3] = {0, 0, 0}, r = 0;
+      for (int d = 0; d < ns.dim; ++d) {
+        xi[d] = ns.x[d][j] - ns.x[d][i];
+        y[d] = ns.cur[4 * j + d] - ns.cur[4 * i + d];
+        r += y[d] * y[d];
+      }
+      r = std::sqrt(r);
+      const double s = r / L - 1.0 - thermal_strain;
+      // 1/2 f (x) xi with f = c g s beta V e: the derivative of W_i = c/4 sum g s^2 xi beta V.
+      const double f = 0.5 * ns.micromodulus[i] * influence(shape, std::min(1.0, L / ns.horizon[i])) *
+                       s * b * ns.volume[j] / r;
+      for (int a = 0; a < ns.dim; ++a)
+        for (int c = 0; c < ns.dim; ++c) S[3 * a + c] += f * y[a] * xi[c];
+    }
+  }
+}
+
 }  // namespace periadapt

@@ -48,4 +48,10 @@ void pmb_stiffness_sum(const NodeSet& nodes, const BondFamilies& bonds, Influenc
 double pmb_stiffness_row(const NodeSet& nodes, const BondFamilies& bonds, InfluenceShape shape,
                          std::size_t i);
 
+// Stress of every node, sigma_i = dW_i / d(eps) for the energy density above:
+// 1/2 sum_j c_i g s beta_j V_j e_ij (x) xi_ij over intact bonds (the bond-based stress; the
+// classical stress of a homogeneous strain where W_i is classical). Row-major 3 x 3 per node.
+void pmb_stress(const NodeSet& nodes, const BondFamilies& bonds, InfluenceShape shape,
+                std::vector<double>& sigma, double thermal_strain = 0.0);
+
 }  // namespace periadapt

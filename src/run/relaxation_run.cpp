@@ -62,7 +62,7 @@ RunResult run_relaxation(const Deck& dk, const RunOptions& opt) {
                           r.load_factor, r.iterations, r.residual, r.newly_broken, broken, umax, U,
                           resultant_columns(m, applied, reaction),
                           std::chrono::duration<double>(clock::now() - t_start).count());
-    if (vtu) vtu->write(r.load_factor, ns, snapshot_fields(m, W));
+    if (vtu) vtu->write(r.load_factor, ns, snapshot_fields(m, W, dk.output.stress));
     if (!opt.quiet)
       fmt::print("load step {}/{} (factor {:.4g}): {} iterations, residual {:.2e}, {} bonds broke\n",
                  r.load_step, dk.load_steps, r.load_factor, r.iterations, r.residual,

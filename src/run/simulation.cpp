@@ -270,7 +270,7 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
     }
     const auto t_out = clock::now();
     AddElapsed out_timer{t_out, output_seconds};
-    if (do_vtu) vtu->write(t, ns, snapshot_fields(m, W));
+    if (do_vtu) vtu->write(t, ns, snapshot_fields(m, W, dk.output.stress));
     if (do_png) {
       std::vector<double> dmg(ns.size());
       for (std::size_t i = 0; i < ns.size(); ++i) dmg[i] = ns.damage(i);

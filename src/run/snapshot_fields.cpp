@@ -1,8 +1,12 @@
 #include "run/snapshot_fields.hpp"
 
+#include "core/visible_gradient.hpp"
+#include "solver/internal_forces.hpp"
+
 namespace periadapt {
 
-std::vector<PointField> snapshot_fields(const Model& m, const std::vector<double>& W) {
+std::vector<PointField> snapshot_fields(const Model& m, const std::vector<double>& W,
+                                        bool stress) {
   const NodeSet& ns = m.nodes;
   const std::size_t n = ns.size();
   std::vector<PointField> f;
@@ -23,6 +27,21 @@ std::vector<PointField> snapshot_fields(const Model& m, const std::vector<double
   for (std::size_t i = 0; i < n; ++i) lvl.data[i] = ns.level[i];
   f.push_back(std::move(lvl));
   f.push_back({"volume", 1, ns.volume});
+  if (!stress) return f;
+  PointField sig{"stress", 9, {}};
+  stress_density(m, sig.data);
+  f.push_back(std::move(sig));
+  PointField eps{"strain", 9, std::vector<double>(9 * n, 0.0)};
+#pragma omp parallel for schedule(dynamic, 256)
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!(ns.flags[i] & kActive)) continue;
+    double G[3][3];
+    fit_gradient(ns, m.bonds, static_cast<std::uint32_t>(i), ns.u, G);
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) eps.data[9 * i + 3 * a + b] = 0.5 * (G[a][b] + G[b][a]);
+  }
+  f.push_back(std::move(eps));
+  if (m.material.lps) f.push_back({"dilatation", 1, m.lps_scratch.theta});
   return f;
 }
 

@@ -40,4 +40,12 @@ void energy_density(const Model& m, std::vector<double>& W) {
     pmb_energy_density(m.nodes, m.bonds, m.material.shape, W, m.material.thermal_strain);
 }
 
+void stress_density(const Model& m, std::vector<double>& sigma) {
+  if (m.material.lps)
+    lps_stress(m.nodes, m.bonds, m.material.shape, m.material.lps_constants, m.lps_scratch, sigma,
+               !m.dual_horizon);
+  else
+    pmb_stress(m.nodes, m.bonds, m.material.shape, sigma, m.material.thermal_strain);
+}
+
 }  // namespace periadapt

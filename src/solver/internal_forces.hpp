@@ -23,5 +23,8 @@ std::size_t internal_forces_rows(Model& m, bool allow_breaking, const std::vecto
                                  std::vector<double>* W = nullptr);
 
 void energy_density(const Model& m, std::vector<double>& W);
+// Stress of every node, the derivative of its energy density above with respect to a homogeneous
+// strain (row-major 3 x 3 per node; LPS also leaves the dilatation in m.lps_scratch.theta).
+void stress_density(const Model& m, std::vector<double>& sigma);
 
 }  // namespace periadapt
