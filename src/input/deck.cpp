@@ -674,6 +674,7 @@ Deck parse_deck_sections(const std::string& text, const std::string& name,
     out.directory = o->text("directory", out.directory);
     out.vtu = o->boolean("vtu", true);
     out.stress = o->boolean("stress", false);
+    out.vtu_zlib = o->choice("vtu_compression", {"none", "zlib"}, "none") == "zlib";
     out.vtu_count = static_cast<int>(o->integer("vtu_snapshots", 10, [](long v) {
       return (v >= 0 && v <= 100000) ? std::string() : std::string("must be in 0 ... 100000");
     }));

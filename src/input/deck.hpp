@@ -50,6 +50,7 @@ struct OutputSpec {
   int png_width = 1200;
   bool vtu = true;
   bool stress = false;                // stress, strain (and LPS dilatation) in the VTU
+  bool vtu_zlib = false;              // zlib-compressed VTU arrays
   // crack tip
   bool track_tip = false;
   double tip_threshold = 0.35;

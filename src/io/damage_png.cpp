@@ -145,6 +145,26 @@ void write_field_png(const std::string& path, const NodeSet& ns, const std::vect
   cairo_move_to(cr, x0 + len * sc + 8, sy + 4);
   cairo_show_text(cr, (len >= 1 ? fmt::format("{:g} m", len) : fmt::format("{:g} mm", len * 1e3)).c_str());
 
+  // Axes of the picture: x right, y up; a 3D body is seen along -z (its nodes projected onto
+  // the x-y plane, the most damaged drawn last).
+  if (dim > 1) {
+    const double ax = x0 + plot_w - 70, ay = sy + 16, len_px = 18;
+    cairo_set_line_width(cr, 1.5);
+    cairo_move_to(cr, ax, ay);
+    cairo_line_to(cr, ax + len_px, ay);
+    cairo_move_to(cr, ax, ay);
+    cairo_line_to(cr, ax, ay - len_px);
+    cairo_stroke(cr);
+    cairo_move_to(cr, ax + len_px + 3, ay + 4);
+    cairo_show_text(cr, "x");
+    cairo_move_to(cr, ax - 3, ay - len_px - 4);
+    cairo_show_text(cr, "y");
+    if (dim == 3) {
+      cairo_move_to(cr, ax - 150, ay + 4);
+      cairo_show_text(cr, "projected along z");
+    }
+  }
+
   cairo_destroy(cr);
   try {
     write_png_file(surf, path);

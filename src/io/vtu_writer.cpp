@@ -2,18 +2,22 @@
 
 #include "io/atomic_output.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
+#include <string>
+
+#include <zlib.h>
 
 #include <fmt/format.h>
 
 namespace periadapt {
 
-VtuSeries::VtuSeries(std::string directory, std::string basename)
-    : dir_(std::move(directory)), base_(std::move(basename)) {
+VtuSeries::VtuSeries(std::string directory, std::string basename, bool zlib)
+    : dir_(std::move(directory)), base_(std::move(basename)), compress_(zlib) {
   std::filesystem::create_directories(dir_);
   pvd_ = dir_ + "/" + base_ + ".pvd";
 }
@@ -25,59 +29,90 @@ std::string VtuSeries::write(double time, const NodeSet& ns, const std::vector<P
   const std::uint64_t n = ids.size();
   const std::string name = fmt::format("{}_{:05d}.vtu", base_, entries_.size());
   const std::string path = dir_ + "/" + name;
-  write_file_atomically(path, [&](std::ostream& out) {
-
-  // Block layout in the appended section: [uint64 byte count][payload] per array.
-  std::uint64_t offset = 0;
-  std::string header;
-  auto array_tag = [&](const std::string& type, const std::string& nm, int comps,
-                       std::uint64_t bytes) {
-    header += fmt::format(
-        "        <DataArray type=\"{}\" Name=\"{}\" NumberOfComponents=\"{}\" "
-        "format=\"appended\" offset=\"{}\"/>\n",
-        type, nm, comps, offset);
-    offset += 8 + bytes;
+  // Each array's block of the appended section, built first so that the XML header can give
+  // their offsets: raw, [uint64 byte count][payload]; zlib, VTK's compressed layout
+  // [uint64 blocks][block size][last block's size][compressed size per block][zlib streams].
+  std::vector<std::string> blocks;
+  auto add_block = [&](const void* p, std::uint64_t bytes) {
+    const auto* src = static_cast<const unsigned char*>(p);
+    std::string b;
+    auto put64 = [&b](std::uint64_t v) { b.append(reinterpret_cast<const char*>(&v), 8); };
+    if (!compress_) {
+      put64(bytes);
+      b.append(reinterpret_cast<const char*>(src), bytes);
+    } else {
+      constexpr std::uint64_t kBlock = 1 << 16;
+      const std::uint64_t nb = (bytes + kBlock - 1) / kBlock;
+      put64(nb);
+      put64(kBlock);
+      put64(nb ? bytes - (nb - 1) * kBlock : 0);
+      std::string data;
+      std::vector<std::uint64_t> sizes;
+      std::vector<unsigned char> z;
+      for (std::uint64_t k = 0; k < nb; ++k) {
+        const uLong len = static_cast<uLong>(std::min(kBlock, bytes - k * kBlock));
+        uLongf zlen = compressBound(len);
+        z.resize(zlen);
+        if (compress2(z.data(), &zlen, src + k * kBlock, len, Z_DEFAULT_COMPRESSION) != Z_OK)
+          throw std::runtime_error("zlib could not compress a VTU array");
+        sizes.push_back(zlen);
+        data.append(reinterpret_cast<const char*>(z.data()), zlen);
+      }
+      for (std::uint64_t sz : sizes) put64(sz);
+      b += data;
+    }
+    blocks.push_back(std::move(b));
   };
-  header += "<?xml version=\"1.0\"?>\n";
-  header += "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
-            "header_type=\"UInt64\">\n  <UnstructuredGrid>\n";
-  header += fmt::format("    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n", n, n);
-  header += "      <PointData>\n";
-  for (const PointField& f : fields) array_tag("Float64", f.name, f.components, n * f.components * 8);
-  header += "      </PointData>\n      <Points>\n";
-  array_tag("Float64", "Points", 3, n * 24);
-  header += "      </Points>\n      <Cells>\n";
-  array_tag("Int64", "connectivity", 1, n * 8);
-  array_tag("Int64", "offsets", 1, n * 8);
-  array_tag("UInt8", "types", 1, n);
-  header += "      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n"
-            "  <AppendedData encoding=\"raw\">\n_";
-  out << header;
-
   std::vector<double> buf;
-  auto put = [&](const void* p, std::uint64_t bytes) {
-    out.write(reinterpret_cast<const char*>(&bytes), 8);
-    out.write(reinterpret_cast<const char*>(p), static_cast<std::streamsize>(bytes));
-  };
   for (const PointField& f : fields) {
     buf.resize(n * f.components);
     for (std::uint64_t k = 0; k < n; ++k)
       for (int c = 0; c < f.components; ++c)
         buf[k * f.components + c] = f.data[static_cast<std::size_t>(ids[k]) * f.components + c];
-    put(buf.data(), buf.size() * 8);
+    add_block(buf.data(), buf.size() * 8);
   }
   buf.resize(n * 3);
   for (std::uint64_t k = 0; k < n; ++k)
     for (int d = 0; d < 3; ++d) buf[k * 3 + d] = ns.x[d][ids[k]];
-  put(buf.data(), buf.size() * 8);
+  add_block(buf.data(), buf.size() * 8);
   std::vector<std::int64_t> ib(n);
   for (std::uint64_t k = 0; k < n; ++k) ib[k] = static_cast<std::int64_t>(k);
-  put(ib.data(), n * 8);
+  add_block(ib.data(), n * 8);
   for (std::uint64_t k = 0; k < n; ++k) ib[k] = static_cast<std::int64_t>(k + 1);
-  put(ib.data(), n * 8);
+  add_block(ib.data(), n * 8);
   std::vector<std::uint8_t> types(n, 1);  // VTK_VERTEX
-  put(types.data(), n);
-  out << "\n  </AppendedData>\n</VTKFile>\n";
+  add_block(types.data(), n);
+
+  std::uint64_t offset = 0;
+  std::size_t next = 0;
+  std::string header;
+  auto array_tag = [&](const std::string& type, const std::string& nm, int comps) {
+    header += fmt::format(
+        "        <DataArray type=\"{}\" Name=\"{}\" NumberOfComponents=\"{}\" "
+        "format=\"appended\" offset=\"{}\"/>\n",
+        type, nm, comps, offset);
+    offset += blocks[next++].size();
+  };
+  header += "<?xml version=\"1.0\"?>\n";
+  header += fmt::format(
+      "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
+      "header_type=\"UInt64\"{}>\n  <UnstructuredGrid>\n",
+      compress_ ? " compressor=\"vtkZLibDataCompressor\"" : "");
+  header += fmt::format("    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n", n, n);
+  header += "      <PointData>\n";
+  for (const PointField& f : fields) array_tag("Float64", f.name, f.components);
+  header += "      </PointData>\n      <Points>\n";
+  array_tag("Float64", "Points", 3);
+  header += "      </Points>\n      <Cells>\n";
+  array_tag("Int64", "connectivity", 1);
+  array_tag("Int64", "offsets", 1);
+  array_tag("UInt8", "types", 1);
+  header += "      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n"
+            "  <AppendedData encoding=\"raw\">\n_";
+  write_file_atomically(path, [&](std::ostream& out) {
+    out << header;
+    for (const std::string& b : blocks) out.write(b.data(), static_cast<std::streamsize>(b.size()));
+    out << "\n  </AppendedData>\n</VTKFile>\n";
   }, true);
   entries_.emplace_back(time, name);
   write_pvd();

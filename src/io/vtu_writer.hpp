@@ -1,5 +1,6 @@
 #pragma once
-// ParaView output: one VTU (unstructured grid of vertex cells, appended raw binary) per snapshot
+// ParaView output: one VTU (unstructured grid of vertex cells, appended raw binary, optionally
+// zlib-compressed as VTK's vtkZLibDataCompressor reads it) per snapshot
 // and a PVD collection that indexes them by time. The PVD is rewritten after every snapshot, so
 // a run that stops early still leaves a valid series.
 #include <string>
@@ -12,13 +13,13 @@ namespace periadapt {
 
 struct PointField {
   std::string name;
-  int components;             // 1 or 3
+  int components;             // 1, 3 or 9 (a row-major tensor)
   std::vector<double> data;   // n * components
 };
 
 class VtuSeries {
  public:
-  VtuSeries(std::string directory, std::string basename);
+  VtuSeries(std::string directory, std::string basename, bool zlib = false);
   // Writes the active nodes' positions (reference configuration) and fields; returns the path.
   std::string write(double time, const NodeSet& nodes, const std::vector<PointField>& fields);
   const std::string& pvd_path() const { return pvd_; }
@@ -29,6 +30,7 @@ class VtuSeries {
  private:
   void write_pvd() const;
   std::string dir_, base_, pvd_;
+  bool compress_ = false;
   std::vector<std::pair<double, std::string>> entries_;
 };
 

@@ -31,7 +31,7 @@ RunResult run_relaxation(const Deck& dk, const RunOptions& opt) {
   StreamedOutput hist;
   if (opt.write_files) {
     std::filesystem::create_directories(dir);
-    if (dk.output.vtu) vtu = std::make_unique<VtuSeries>(dir, "snapshot");
+    if (dk.output.vtu) vtu = std::make_unique<VtuSeries>(dir, "snapshot", dk.output.vtu_zlib);
     hist = StreamedOutput(dir + "/history.csv");
     hist << "load_step,load_factor,iterations,relative_residual,newly_broken,broken_bonds,"
             "max_abs_displacement_m,strain_energy_J," + resultant_header(m) + "wall_time_s\n";

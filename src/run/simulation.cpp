@@ -202,7 +202,7 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
   std::unique_ptr<VtuSeries> vtu;
   StreamedOutput hist;
   if (opt.write_files) {
-    vtu = std::make_unique<VtuSeries>(dir, "snapshot");
+    vtu = std::make_unique<VtuSeries>(dir, "snapshot", dk.output.vtu_zlib);
     hist = StreamedOutput(dir + "/history.csv");
     if (!restart)
       hist << "step,time_s,kinetic_energy_J,strain_energy_J,external_work_J,energy_balance_J,"

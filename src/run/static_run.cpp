@@ -91,7 +91,7 @@ RunResult run_static(const Deck& dk, const RunOptions& opt) {
   if (opt.write_files) {
     const std::string dir = opt.out_dir ? *opt.out_dir : dk.output.directory;
     std::filesystem::create_directories(dir);
-    VtuSeries vtu(dir, "snapshot");
+    VtuSeries vtu(dir, "snapshot", dk.output.vtu_zlib);
     vtu.write(0.0, ns, snapshot_fields(m, W, dk.output.stress));
     write_file_atomically(dir + "/displacement.csv", [&](std::ostream& csv) {
       csv << "node,x,y,z,ux,uy,uz\n";
