@@ -65,6 +65,30 @@ TEST(Geometry, PolygonBodyVolumesSumToItsArea) {
               std::sqrt(2.0) * perimeter * dx + 4 * dx * dx);
 }
 
+// Holes take any region: an L-shaped polygon on cell edges removes exactly its cells (2D), a box
+// and a sphere in 3D remove the cells whose centres they hold.
+TEST(Geometry, PolygonAndBoxHolesRemoveTheirCells) {
+  auto volume = [](int dim, const std::string& body, const std::string& holes) {
+    const Model m = build_model(test::deck_from(
+        "model: {dimension: " + std::to_string(dim) + (dim == 2 ? ", thickness: 0.01" : "") + "}\n"
+        "material: {youngs_modulus: 72.0e9, density: 2440}\n"
+        "discretization: {spacing: 0.01, body: {box: " + body + "}, holes: " + holes + "}\n"
+        "damage: {enabled: false}\nsolver: {steps: 1}\n"));
+    double v = 0;
+    for (double x : m.nodes.volume) v += x;
+    return v;
+  };
+  const double plate = volume(2, "{min: [0, 0], max: [0.1, 0.1]}", "[]");
+  const double holed = volume(
+      2, "{min: [0, 0], max: [0.1, 0.1]}",
+      "[{polygon: [[0.02, 0.02], [0.06, 0.02], [0.06, 0.04], [0.04, 0.04], [0.04, 0.07], [0.02, 0.07]]}]");
+  EXPECT_NEAR((plate - holed) / 0.01, 0.04 * 0.02 + 0.02 * 0.03, 1e-15);
+  const double block = volume(3, "{min: [0, 0, 0], max: [0.1, 0.1, 0.1]}", "[]");
+  const double cut = volume(3, "{min: [0, 0, 0], max: [0.1, 0.1, 0.1]}",
+                            "[{box: {min: [0.02, 0.02, 0.02], max: [0.05, 0.04, 0.1]}}]");
+  EXPECT_NEAR(block - cut, 0.03 * 0.02 * 0.08, 1e-15);
+}
+
 TEST(Geometry, PolygonRegionContainsAndDistance) {
   Shape s;
   s.kind = Shape::Kind::Polygon;
