@@ -675,6 +675,16 @@ Deck parse_deck_sections(const std::string& text, const std::string& name,
     out.vtu = o->boolean("vtu", true);
     out.stress = o->boolean("stress", false);
     out.vtu_zlib = o->choice("vtu_compression", {"none", "zlib"}, "none") == "zlib";
+    for (Section r : o->list("regions")) {
+      NamedRegion nr;
+      nr.name = r.text("name");
+      if (nr.name.empty()) r.fail("name", "must not be empty");
+      for (const NamedRegion& other : out.regions)
+        if (other.name == nr.name) r.fail("name", "'" + nr.name + "' names two output regions");
+      nr.region = parse_region(r.section("region"), dk.dim);
+      r.finish();
+      out.regions.push_back(std::move(nr));
+    }
     out.vtu_count = static_cast<int>(o->integer("vtu_snapshots", 10, [](long v) {
       return (v >= 0 && v <= 100000) ? std::string() : std::string("must be in 0 ... 100000");
     }));

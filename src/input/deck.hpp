@@ -40,6 +40,11 @@ struct LoadDisplacementPlot {
   int component = 0;
 };
 
+struct NamedRegion {
+  std::string name;
+  Shape region;
+};
+
 struct OutputSpec {
   std::string directory = "out";
   int vtu_count = 10;                 // snapshots over the run (plus the initial state)
@@ -51,6 +56,7 @@ struct OutputSpec {
   bool vtu = true;
   bool stress = false;                // stress, strain (and LPS dilatation) in the VTU
   bool vtu_zlib = false;              // zlib-compressed VTU arrays
+  std::vector<NamedRegion> regions;   // sums over these in history.csv and summary.json
   // crack tip
   bool track_tip = false;
   double tip_threshold = 0.35;

@@ -11,6 +11,7 @@
 
 #include "analysis/energy.hpp"
 #include "run/resultants.hpp"
+#include "run/output_regions.hpp"
 #include "run/snapshot_fields.hpp"
 #include "input/deck_error.hpp"
 #include "io/vtu_writer.hpp"
@@ -34,7 +35,8 @@ RunResult run_relaxation(const Deck& dk, const RunOptions& opt) {
     if (dk.output.vtu) vtu = std::make_unique<VtuSeries>(dir, "snapshot", dk.output.vtu_zlib);
     hist = StreamedOutput(dir + "/history.csv");
     hist << "load_step,load_factor,iterations,relative_residual,newly_broken,broken_bonds,"
-            "max_abs_displacement_m,strain_energy_J," + resultant_header(m) + "wall_time_s\n";
+            "max_abs_displacement_m,strain_energy_J," + resultant_header(m) +
+                region_header(dk.output.regions, ns.dim) + "wall_time_s\n";
   }
   RelaxationOptions ro;
   ro.load_steps = dk.load_steps;
@@ -58,9 +60,10 @@ RunResult run_relaxation(const Deck& dk, const RunOptions& opt) {
       for (int d = 0; d < ns.dim; ++d) umax = std::max(umax, std::abs(ns.u[d][i]));
     const double U = strain_energy(m, W);
     if (hist.is_open())
-      hist << fmt::format("{},{:.6g},{},{:.3e},{},{},{:.9e},{:.9e},{}{:.3f}\n", r.load_step,
+      hist << fmt::format("{},{:.6g},{},{:.3e},{},{},{:.9e},{:.9e},{}{}{:.3f}\n", r.load_step,
                           r.load_factor, r.iterations, r.residual, r.newly_broken, broken, umax, U,
                           resultant_columns(m, applied, reaction),
+                          region_columns(dk.output.regions, ns, W, ns.f),
                           std::chrono::duration<double>(clock::now() - t_start).count());
     if (vtu) vtu->write(r.load_factor, ns, snapshot_fields(m, W, dk.output.stress));
     if (!opt.quiet)
@@ -80,6 +83,10 @@ RunResult run_relaxation(const Deck& dk, const RunOptions& opt) {
   j["bonds"] = m.bonds.num_bonds();
   j["broken_bonds"] = broken;
   j["resultants"] = resultants_json(m, applied, reaction);
+  if (!dk.output.regions.empty()) {
+    strain_energy(m, W);
+    j["regions"] = regions_json(dk.output.regions, ns, W, ns.f);
+  }
   j["wall_time_s"] = std::chrono::duration<double>(clock::now() - t_start).count();
   if (opt.write_files) {
     if (dk.output.load_displacement)

@@ -1,4 +1,5 @@
 #include "run/simulation.hpp"
+#include "run/output_regions.hpp"
 #include "run/snapshot_fields.hpp"
 #include "run/resultants.hpp"
 #include "io/line_plot.hpp"
@@ -207,7 +208,8 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
     if (!restart)
       hist << "step,time_s,kinetic_energy_J,strain_energy_J,external_work_J,energy_balance_J,"
               "broken_bonds,damaged_nodes,damage_sum,tip_x_m,tip_y_m,tip_z_m,tip_speed_m_s,nodes,"
-              "bonds," + resultant_header(m) + "wall_time_s\n";
+              "bonds," + resultant_header(m) + region_header(dk.output.regions, ns.dim) +
+                  "wall_time_s\n";
   }
   std::vector<double> W;
   std::vector<std::string> pngs;
@@ -262,10 +264,11 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
       }
       if (hist.is_open())
         hist << fmt::format(
-            "{},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{},{},{}{:.4f}\n",
+            "{},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{},{},{}{}{:.4f}\n",
             step, t, K, U, vv.external_work(), K + U - vv.external_work(), vv.broken_bonds(),
             damaged_nodes, damage_sum, last_tip[0], last_tip[1], last_tip[2], tracker.current_speed(),
             active_count(ns), m.bonds.num_bonds(), resultant_columns(m, vv),
+            region_columns(dk.output.regions, ns, W, ns.f),
             std::chrono::duration<double>(clock::now() - t_start).count());
     }
     const auto t_out = clock::now();
@@ -449,6 +452,10 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
   j["bonds"] = m.bonds.num_bonds();
   j["precrack_bonds"] = m.precrack_bonds;
   j["broken_bonds"] = vv.broken_bonds();
+  if (!dk.output.regions.empty()) {
+    strain_energy(m, W);
+    j["regions"] = regions_json(dk.output.regions, ns, W, ns.f);
+  }
   {
     double phi = 0;
     for (std::size_t i = 0; i < ns.size(); ++i)

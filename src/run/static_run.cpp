@@ -10,6 +10,7 @@
 
 #include "analysis/energy.hpp"
 #include "run/resultants.hpp"
+#include "run/output_regions.hpp"
 #include "run/snapshot_fields.hpp"
 #include "input/deck_error.hpp"
 #include "io/vtu_writer.hpp"
@@ -87,6 +88,7 @@ RunResult run_static(const Deck& dk, const RunOptions& opt) {
   j["resultants"] = resultants_json(
       m, [&](const BodyLoad& l) { return load_force(ns, l, l.amplitude(1e300)); },
       [&](const PrescribedMotion& p) { return equilibrium_reaction(m, p, f_int, 1.0); });
+  if (!dk.output.regions.empty()) j["regions"] = regions_json(dk.output.regions, ns, W, f_int);
   j["wall_time_s"] = std::chrono::duration<double>(clock::now() - t_start).count();
   if (opt.write_files) {
     const std::string dir = opt.out_dir ? *opt.out_dir : dk.output.directory;

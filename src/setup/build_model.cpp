@@ -108,6 +108,10 @@ Model build_model(const Deck& dk) {
   m.dual_horizon = dk.dual_horizon && dk.solver != Deck::SolverType::Static;
   if (m.dual_horizon) build_transpose(m.bonds);
 
+  for (std::size_t r = 0; r < dk.output.regions.size(); ++r)
+    if (select(ns, dk.output.regions[r].region, tol).empty())
+      throw DeckError(dk.file, 0, 0, "output.regions[" + std::to_string(r) + "].region",
+                      "the region selects no nodes");
   for (const LoadSpec& ls : dk.loads) {
     BodyLoad bl;
     bl.name = ls.name;
