@@ -26,9 +26,24 @@ using namespace periadapt;
 
 namespace {
 
-int check(const std::string& path, const std::vector<std::string>& overrides) {
+int check(const std::string& path, const std::vector<std::string>& overrides,
+          const std::string& nodes_csv) {
   const Deck dk = load_deck(path, overrides);
   const Model m = build_model(dk);
+  if (!nodes_csv.empty()) {
+    // The discretization as a point cloud (discretization.body.points), shortest round-trip
+    // decimals so that reading it back gives the same doubles.
+    write_file_atomically(nodes_csv, [&](std::ostream& out) {
+      const NodeSet& ns = m.nodes;
+      out << (ns.dim == 1 ? "x,volume\n" : ns.dim == 2 ? "x,y,volume\n" : "x,y,z,volume\n");
+      for (std::size_t i = 0; i < ns.size(); ++i) {
+        if (!(ns.flags[i] & kActive)) continue;
+        for (int d = 0; d < ns.dim; ++d) out << fmt::format("{},", ns.x[d][i]);
+        out << fmt::format("{}\n", ns.volume[i]);
+      }
+    });
+    fmt::print("nodes written   {}\n", nodes_csv);
+  }
   const bool is_static = dk.solver != Deck::SolverType::Explicit;
   const TimeStepChoice ts = is_static ? TimeStepChoice{0, 0, 0, 0} : choose_time_step(dk, m);
   const MaterialLaw& mat = m.material;
@@ -161,6 +176,10 @@ int main(int argc, char** argv) {
   CLI::App* chk = app.add_subcommand("check", "validate a deck and print every resolved parameter");
   chk->add_option("deck", deck, "YAML input deck")->required();
   chk->add_option("--set", overrides, "override a deck key: key.path=value (repeatable)");
+  std::string nodes_csv;
+  chk->add_option("--write-nodes", nodes_csv,
+                  "also write the nodes as a point cloud (x,y,z,volume CSV) that "
+                  "discretization.body.points reads back");
   std::vector<std::string> sweep_sets;
   CLI::App* sweep = app.add_subcommand(
       "sweep", "run a deck for every combination of key values, each run in OUT/run_NNNN, "
@@ -215,7 +234,7 @@ int main(int argc, char** argv) {
   if (threads > 0) omp_set_num_threads(threads);
   std::string run_dir;
   try {
-    if (chk->parsed()) return check(deck, overrides);
+    if (chk->parsed()) return check(deck, overrides, nodes_csv);
     if (sweep->parsed()) {
       run_dir = out.empty() ? load_deck(deck).output.directory : out;
       return run_sweep(deck, sweep_sets, {}, run_dir, quiet);

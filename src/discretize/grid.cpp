@@ -30,6 +30,14 @@ std::size_t generate_grid(const GridSpec& s, NodeSet& nodes) {
     return true;
   };
 
+  if (!s.points.empty()) {
+    for (const auto& q : s.points) {
+      const Vec3 p{q[0], q[1], q[2]};
+      if (keep(p)) nodes.append(p, q[3], dx);
+    }
+    return nodes.size() - before;
+  }
+
   std::array<long, 3> count{1, 1, 1};
   std::array<long, 3> start{0, 0, 0};
   Vec3 extent{0, 0, 0};

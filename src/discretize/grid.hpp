@@ -1,6 +1,7 @@
 #pragma once
 // Uniform particle grids in 1D (bar), 2D (rectangle with thickness) and 3D (box), optionally
 // rotated (2D) and clipped to the body, with holes removed.
+#include <array>
 #include <optional>
 #include <vector>
 
@@ -21,6 +22,9 @@ struct GridSpec {
   Registration registration = Registration::CellCentered;
   std::vector<Shape> holes;
   std::optional<Shape> clip;     // a body that is not a box (2D disk): nodes outside are dropped
+  // A point-cloud body: these nodes (x, y, z, volume) in this order instead of the lattice's;
+  // `body` is then their cells' bounding box.
+  std::vector<std::array<double, 4>> points;
 };
 
 // Appends the grid's nodes to `nodes` (volume = cell measure times thickness/area) and returns

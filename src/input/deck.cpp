@@ -1,4 +1,5 @@
 #include "input/deck.hpp"
+#include "input/point_cloud.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -357,7 +358,31 @@ Deck parse_deck_sections(const std::string& text, const std::string& name,
       dk.horizon = dk.horizon_factor * g.spacing;
     }
     Section body = s.section("body");
-    Shape b = parse_region(body, dk.dim);
+    if (body.has("points")) {
+      // A point cloud: the nodes as given, the body their cells' bounding box.
+      std::filesystem::path file = body.text("points");
+      if (file.is_relative()) file = std::filesystem::path(dk.file).parent_path() / file;
+      try {
+        g.points = read_point_cloud(file.string(), dk.dim);
+      } catch (const PointCloudError& e) {
+        body.fail("points", e.what());
+      }
+      body.finish();
+      for (int d = 0; d < 3; ++d) {
+        g.body.lo[d] = d < dk.dim ? INFINITY : 0.0;
+        g.body.hi[d] = d < dk.dim ? -INFINITY : 0.0;
+      }
+      for (const auto& q : g.points)
+        for (int d = 0; d < dk.dim; ++d) {
+          g.body.lo[d] = std::min(g.body.lo[d], q[d] - 0.5 * g.spacing);
+          g.body.hi[d] = std::max(g.body.hi[d], q[d] + 0.5 * g.spacing);
+        }
+    }
+    Shape b = g.points.empty() ? parse_region(body, dk.dim) : Shape{};
+    if (!g.points.empty()) {
+      b.kind = Shape::Kind::Box;
+      b.box = g.body;
+    }
     if (b.outside) s.fail("body", "the body cannot be an outside (complement) region");
     if (b.kind == Shape::Kind::Disk) {
       // A disk body: its bounding box, clipped to the disk.
@@ -388,6 +413,8 @@ Deck parse_deck_sections(const std::string& text, const std::string& name,
     g.rotation_deg = s.number("rotation_deg", 0.0, in_range(-360, 360));
     if (g.rotation_deg != 0.0 && dk.dim != 2)
       s.fail("rotation_deg", "grid rotation is available for 2D models only");
+    if (g.rotation_deg != 0.0 && !g.points.empty())
+      s.fail("rotation_deg", "a point-cloud body keeps its nodes as given; rotate the points instead");
     Vec3 centre{0, 0, 0};
     for (int d = 0; d < 3; ++d)
       centre[d] = d < dk.dim ? 0.5 * (g.body.lo[d] + g.body.hi[d]) : 0.0;

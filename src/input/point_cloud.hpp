@@ -1,0 +1,21 @@
+#pragma once
+// A body given as a point cloud (discretization.body.points): a CSV file with the header
+// "x,volume" (1D), "x,y,volume" (2D) or "x,y,z,volume" (3D) and one node per row, for users who
+// make their own nodes. The nodes keep the deck's grid spacing (quadrature and refinement assume
+// lattice cells), their coordinates and volumes are taken as written (shortest round-trip
+// decimals reproduce a lattice bit for bit: `periadapt check DECK --write-nodes FILE`).
+#include <array>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace periadapt {
+
+struct PointCloudError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// (x, y, z, volume) per row; throws PointCloudError naming the file and line.
+std::vector<std::array<double, 4>> read_point_cloud(const std::string& path, int dim);
+
+}  // namespace periadapt
