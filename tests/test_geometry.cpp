@@ -7,6 +7,8 @@
 #include "test_helpers.hpp"
 
 #include <cmath>
+#include <cstdio>
+#include <fstream>
 #include <string>
 
 using namespace periadapt;
@@ -87,6 +89,31 @@ TEST(Geometry, PolygonAndBoxHolesRemoveTheirCells) {
   const double cut = volume(3, "{min: [0, 0, 0], max: [0.1, 0.1, 0.1]}",
                             "[{box: {min: [0.02, 0.02, 0.02], max: [0.05, 0.04, 0.1]}}]");
   EXPECT_NEAR(block - cut, 0.03 * 0.02 * 0.08, 1e-15);
+}
+
+// A point-cloud body keeps its nodes' positions, order and volumes as written (volumes need not
+// be the cell's), with the deck's spacing; its bounding box is the points' cells'.
+TEST(Geometry, PointCloudBodyKeepsItsNodesAsWritten) {
+  const std::string file = ::testing::TempDir() + "periadapt_points.csv";
+  {
+    std::ofstream out(file);
+    out << "x,y,z,volume\n0.0,0.0,0.0,2e-9\n0.002,0.0,0.0,1e-9\n0.001,0.003,-0.001,3e-9\n";
+  }
+  const Model m = build_model(test::deck_from(
+      "model: {dimension: 3}\nmaterial: {youngs_modulus: 72.0e9, density: 2440}\n"
+      "discretization: {spacing: 0.001, body: {points: " + file + "}}\n"
+      "damage: {enabled: false}\nsolver: {steps: 1}\n"));
+  ASSERT_EQ(m.nodes.size(), 3u);
+  const double expect[3][4] = {{0, 0, 0, 2e-9}, {0.002, 0, 0, 1e-9}, {0.001, 0.003, -0.001, 3e-9}};
+  for (std::size_t i = 0; i < 3; ++i) {
+    for (int d = 0; d < 3; ++d) EXPECT_EQ(m.nodes.x[d][i], expect[i][d]);
+    EXPECT_EQ(m.nodes.volume[i], expect[i][3]);
+    EXPECT_EQ(m.nodes.spacing[i], 0.001);
+  }
+  EXPECT_DOUBLE_EQ(m.body.lo[1], -0.0005);
+  EXPECT_DOUBLE_EQ(m.body.hi[1], 0.0035);
+  EXPECT_DOUBLE_EQ(m.body.lo[2], -0.0015);
+  std::remove(file.c_str());
 }
 
 TEST(Geometry, PolygonRegionContainsAndDistance) {
