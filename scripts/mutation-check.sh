@@ -37,6 +37,11 @@ jobs=$(nproc)
 rm -rf "$work/src"
 mkdir -p "$work/src"
 git ls-files -co --exclude-standard -z | tar -cf - --null -T - | tar -xf - -C "$work/src"
+# Files a stopped earlier call left built mutated: their objects may be newer than the copies'
+# times, so touch them to force a rebuild.
+if [[ -f $work/dirty ]]; then
+  while read -r f; do [[ -f $work/src/$f ]] && touch "$work/src/$f"; done < "$work/dirty"
+fi
 cmake -S "$work/src" -B "$work/build" -DCMAKE_BUILD_TYPE=Release -DPERIADAPT_BUILD_BENCH=OFF > /dev/null
 echo "building the unmutated scratch copy in $work ..."
 cmake --build "$work/build" -j"$jobs" > "$work/build.log" 2>&1 || { tail -30 "$work/build.log"; exit 1; }
@@ -72,6 +77,7 @@ while IFS=$'\t' read -r id file subst desc; do
     exit 1
   fi
   cp "$target" "$work/pristine"
+  echo "$file" >> "$work/dirty"
   SUBST="$subst" perl -0pi -e 'eval "\$_ =~ $ENV{SUBST}"; die $@ if $@' "$target"
   if cmp -s "$target" "$work/pristine"; then
     echo "$id: the substitution left $file unchanged" >&2; exit 1
@@ -103,7 +109,7 @@ while IFS=$'\t' read -r id file subst desc; do
 done < "$list"
 
 # Leave the scratch build unmutated for the next call.
-cmake --build "$work/build" -j"$jobs" > "$work/build.log" 2>&1 || true
+cmake --build "$work/build" -j"$jobs" > "$work/build.log" 2>&1 && rm -f "$work/dirty"
 total=$((killed + survived))
 ((total > 0)) || { echo "no mutant selected"; exit 2; }
 echo "killed $killed of $total ($(( 100 * killed / total ))%), stillborn $stillborn"
