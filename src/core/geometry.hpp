@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <memory>
 #include <vector>
 
 namespace periadapt {
@@ -55,14 +56,26 @@ inline double polygon_boundary_distance(const std::vector<Vec3>& v, const Vec3& 
   return d;
 }
 
-// A region of space: box, disk (2D), cylinder along an axis (3D) or sphere.
+// A closed triangulated surface read from a CAD file (discretize/surface_mesh.hpp): its solid's
+// inside test and the distance to its surface. Thread-safe const queries.
+struct SolidSurface {
+  virtual ~SolidSurface() = default;
+  virtual bool inside(const Vec3& p) const = 0;  // points on the surface count as inside
+  virtual double distance(const Vec3& p) const = 0;
+  virtual Box bounds() const = 0;
+  virtual double volume() const = 0;
+};
+
+// A region of space: box, disk (2D), cylinder along an axis (3D), sphere, polygon (2D) or the
+// solid of a closed surface (3D).
 struct Shape {
-  enum class Kind { Box, Disk, Cylinder, Sphere, Polygon, All } kind = Kind::All;
+  enum class Kind { Box, Disk, Cylinder, Sphere, Polygon, Surface, All } kind = Kind::All;
   Box box;
   Vec3 center{0, 0, 0};
   double radius = 0;
   int axis = 2;  // cylinder axis (0,1,2)
   std::vector<Vec3> vertices;  // polygon (2D), in order
+  std::shared_ptr<const SolidSurface> solid;  // Surface
   bool outside = false;  // the complement: everything not in the shape (e.g. a clamped rim)
   bool contains(const Vec3& p, double tol = 0.0) const {
     return outside ? !contains_shape(p, -tol) : contains_shape(p, tol);
@@ -90,6 +103,12 @@ struct Shape {
         const bool in = polygon_contains(vertices, p);
         if (tol == 0.0) return in;
         const double d = polygon_boundary_distance(vertices, p);
+        return tol > 0 ? (in || d <= tol) : (in && d > -tol);
+      }
+      case Kind::Surface: {
+        const bool in = solid->inside(p);
+        if (tol == 0.0) return in;
+        const double d = solid->distance(p);
         return tol > 0 ? (in || d <= tol) : (in && d > -tol);
       }
     }
@@ -121,6 +140,7 @@ struct Shape {
       }
       case Kind::Polygon:
         return polygon_contains(vertices, p) ? 0.0 : polygon_boundary_distance(vertices, p);
+      case Kind::Surface: return solid->inside(p) ? 0.0 : solid->distance(p);
     }
     return 0.0;
   }

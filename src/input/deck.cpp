@@ -1,5 +1,6 @@
 #include "input/deck.hpp"
 #include "input/point_cloud.hpp"
+#include "discretize/surface_mesh.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -66,15 +67,30 @@ std::vector<Vec3> parse_polygon(Section& s) {
   return v;
 }
 
+// The folder of the deck being read: files a deck names (CAD surfaces, point clouds) are found
+// relative to it.
+static thread_local std::filesystem::path g_deck_folder;
+static std::filesystem::path deck_folder() { return g_deck_folder; }
+
 Shape parse_region(Section s, int dim) {
   Shape sh;
   const std::size_t D = static_cast<std::size_t>(dim);
   int kinds = s.has("box") + s.has("disk") + s.has("cylinder") + s.has("sphere") +
-              s.has("polygon") + s.has("all");
+              s.has("polygon") + s.has("surface") + s.has("all");
   if (kinds != 1)
     s.fail("", "a region needs exactly one of: box, disk (2D), polygon (2D), cylinder (3D), "
-               "sphere (3D), all");
-  if (s.has("polygon")) {
+               "sphere (3D), surface (3D), all");
+  if (s.has("surface")) {
+    if (dim != 3) s.fail("surface", "a surface region (a closed CAD surface) is for 3D models");
+    std::filesystem::path file = s.text("surface");
+    if (file.is_relative()) file = deck_folder() / file;
+    sh.kind = Shape::Kind::Surface;
+    try {
+      sh.solid = load_solid_surface(file.string());
+    } catch (const SurfaceMeshError& e) {
+      s.fail("surface", e.what());
+    }
+  } else if (s.has("polygon")) {
     if (dim != 2) s.fail("polygon", "a polygon region is for 2D models");
     sh.kind = Shape::Kind::Polygon;
     sh.vertices = parse_polygon(s);
@@ -269,6 +285,7 @@ Deck parse_deck_sections(const std::string& text, const std::string& name,
                                     "discretization, ... (see docs/deck-reference.md)");
   Deck dk;
   dk.file = name;
+  g_deck_folder = std::filesystem::path(name).parent_path();
   {
     // What a checkpoint must agree with: the deck without its output section and run length
     // (a restart may write elsewhere or run longer), comments and layout aside.
@@ -361,7 +378,7 @@ Deck parse_deck_sections(const std::string& text, const std::string& name,
     if (body.has("points")) {
       // A point cloud: the nodes as given, the body their cells' bounding box.
       std::filesystem::path file = body.text("points");
-      if (file.is_relative()) file = std::filesystem::path(dk.file).parent_path() / file;
+      if (file.is_relative()) file = deck_folder() / file;
       try {
         g.points = read_point_cloud(file.string(), dk.dim);
       } catch (const PointCloudError& e) {
@@ -402,8 +419,13 @@ Deck parse_deck_sections(const std::string& text, const std::string& name,
           g.body.hi[d] = std::max(g.body.hi[d], p[d]);
         }
       }
+    } else if (b.kind == Shape::Kind::Surface) {
+      // A CAD solid: its bounding box, clipped to the solid.
+      g.clip = b;
+      g.body = b.solid->bounds();
     } else if (b.kind != Shape::Kind::Box) {
-      s.fail("body", "the body is a box, or a disk or polygon in 2D (use holes to cut it)");
+      s.fail("body", "the body is a box, a disk or polygon in 2D, a closed surface in 3D, or a "
+                     "point cloud (use holes to cut it)");
     } else {
       g.body = b.box;
     }
