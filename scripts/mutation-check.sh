@@ -32,13 +32,25 @@ done
 list=$(realpath "$list")
 jobs=$(nproc)
 
-# Scratch copy of the working tree (tracked and untracked, not ignored), built once; an exact copy
-# (tar keeps the files' times, so the scratch build only rebuilds what changed).
-rm -rf "$work/src"
+# Scratch copy of the working tree (tracked and untracked, not ignored), built once. A file
+# whose content differs from the previous copy's is written anew (a fresh time, so make rebuilds
+# it); unchanged files keep their time, so the scratch build only rebuilds what changed. (Copying
+# the tree's own times instead would miss a file edited before the previous scratch build ran.)
 mkdir -p "$work/src"
-git ls-files -co --exclude-standard -z | tar -cf - --null -T - | tar -xf - -C "$work/src"
-# Files a stopped earlier call left built mutated: their objects may be newer than the copies'
-# times, so touch them to force a rebuild.
+rm -rf "$work/incoming"
+mkdir -p "$work/incoming"
+git ls-files -co --exclude-standard -z | tar -cf - --null -T - | tar -xf - -C "$work/incoming"
+(cd "$work/incoming" && find . -type f -print0) | while IFS= read -r -d '' f; do
+  if ! cmp -s "$work/incoming/$f" "$work/src/$f"; then
+    mkdir -p "$(dirname "$work/src/$f")"
+    cp "$work/incoming/$f" "$work/src/$f"
+  fi
+done
+(cd "$work/src" && find . -type f -print0) | while IFS= read -r -d '' f; do
+  [[ -e $work/incoming/$f ]] || rm -f "$work/src/$f"
+done
+rm -rf "$work/incoming"
+# Files a stopped earlier call left built mutated: make them rebuild.
 if [[ -f $work/dirty ]]; then
   while read -r f; do [[ -f $work/src/$f ]] && touch "$work/src/$f"; done < "$work/dirty"
 fi

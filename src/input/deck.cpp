@@ -76,11 +76,21 @@ Shape parse_region(Section s, int dim) {
   Shape sh;
   const std::size_t D = static_cast<std::size_t>(dim);
   int kinds = s.has("box") + s.has("disk") + s.has("cylinder") + s.has("sphere") +
-              s.has("polygon") + s.has("surface") + s.has("all");
+              s.has("polygon") + s.has("surface") + s.has("gmsh") + s.has("all");
   if (kinds != 1)
     s.fail("", "a region needs exactly one of: box, disk (2D), polygon (2D), cylinder (3D), "
-               "sphere (3D), surface (3D), all");
-  if (s.has("surface")) {
+               "sphere (3D), surface (3D), gmsh, all");
+  if (s.has("gmsh")) {
+    if (dim < 2) s.fail("gmsh", "a Gmsh region is for 2D and 3D models");
+    std::filesystem::path file = s.text("gmsh");
+    if (file.is_relative()) file = deck_folder() / file;
+    sh.kind = Shape::Kind::Surface;
+    try {
+      sh.solid = load_gmsh_solid(file.string(), dim);
+    } catch (const SurfaceMeshError& e) {
+      s.fail("gmsh", e.what());
+    }
+  } else if (s.has("surface")) {
     if (dim != 3) s.fail("surface", "a surface region (a closed CAD surface) is for 3D models");
     std::filesystem::path file = s.text("surface");
     if (file.is_relative()) file = deck_folder() / file;
