@@ -16,6 +16,18 @@ namespace periadapt::test {
 
 inline Deck deck_from(const std::string& yaml) { return parse_deck(yaml, "test.yaml"); }
 
+// Displaces every node by the homogeneous strain eps (u = eps x, first `ns.dim` components).
+inline void apply_homogeneous_strain(NodeSet& ns, const double eps[3][3]) {
+  for (std::size_t i = 0; i < ns.size(); ++i) {
+    for (int d = 0; d < ns.dim; ++d) {
+      double u = 0;
+      for (int e = 0; e < ns.dim; ++e) u += eps[d][e] * ns.x[e][i];
+      ns.u[d][i] = u;
+    }
+    ns.sync_current(i);
+  }
+}
+
 // A minimal valid 2D deck; `extra` is appended (later keys of the same section are not merged,
 // so callers pass whole sections they want to change through `sections`).
 inline std::string basic_deck(const std::string& model, const std::string& material,

@@ -159,14 +159,7 @@ double worst_edge_node_energy_error(const Case& c, const std::string& correction
   std::size_t counted = 0;
   for (const auto& eps : strains) {
     NodeSet& ns = md.nodes;
-    for (std::size_t i = 0; i < ns.size(); ++i) {
-      for (int d = 0; d < c.dim; ++d) {
-        double u = 0;
-        for (int e = 0; e < c.dim; ++e) u += eps[d][e] * ns.x[e][i];
-        ns.u[d][i] = u;
-      }
-      ns.sync_current(i);
-    }
+    test::apply_homogeneous_strain(ns, eps);
     std::vector<double> W;
     energy_density(md, W);
     const double w_classical = classical_energy(c, E, eps);

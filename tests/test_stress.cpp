@@ -63,14 +63,7 @@ Errors worst_errors(const Case& c, const std::string& correction, double margin,
   Errors err;
   NodeSet& ns = md.nodes;
   for (const auto& eps : strains) {
-    for (std::size_t i = 0; i < ns.size(); ++i) {
-      for (int d = 0; d < c.dim; ++d) {
-        double u = 0;
-        for (int e = 0; e < c.dim; ++e) u += eps[d][e] * ns.x[e][i];
-        ns.u[d][i] = u;
-      }
-      ns.sync_current(i);
-    }
+    test::apply_homogeneous_strain(ns, eps);
     std::vector<double> sigma;
     stress_density(md, sigma);
     double sc[3][3], scale = 0;

@@ -2,6 +2,7 @@
 // Structure-of-arrays node storage. Nodes are only ever appended (refinement adds children and
 // deactivates parents), so ids stay stable for the whole run.
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -79,5 +80,18 @@ struct NodeSet {
   // Bytes held per node by the arrays above (for memory reports).
   static constexpr std::size_t bytes_per_node() { return 5 * 3 * 8 + 4 * 8 + 9 * 8 + 2 + 4; }
 };
+
+// Reference and current bond vectors from node i to node j (the first ns.dim components; the
+// others 0) and the current length |y|.
+inline double bond_vectors(const NodeSet& ns, std::size_t i, std::size_t j, double xi[3],
+                           double y[3]) {
+  double r2 = 0;
+  for (int d = 0; d < 3; ++d) {
+    xi[d] = d < ns.dim ? ns.x[d][j] - ns.x[d][i] : 0.0;
+    y[d] = d < ns.dim ? ns.cur[4 * j + d] - ns.cur[4 * i + d] : 0.0;
+    r2 += y[d] * y[d];
+  }
+  return std::sqrt(r2);
+}
 
 }  // namespace periadapt

@@ -318,13 +318,8 @@ void lps_stress(const NodeSet& ns, const BondFamilies& bf, InfluenceShape shape,
       const std::uint32_t j = bf.neighbor[k];
       const double x = bf.length(k);
       if (!(b > 0.0) || (mutual_only && x > sc.reach[j])) continue;
-      double xi[3] = {0, 0, 0}, y[3] = {0, 0, 0}, r = 0;
-      for (int d = 0; d < ns.dim; ++d) {
-        xi[d] = ns.x[d][j] - ns.x[d][i];
-        y[d] = ns.cur[4 * j + d] - ns.cur[4 * i + d];
-        r += y[d] * y[d];
-      }
-      r = std::sqrt(r);
+      double xi[3], y[3];
+      const double r = bond_vectors(ns, i, j, xi, y);
       // t_ij of node i's own state: its energy density's derivative (no 1/2, unlike PMB's pair
       // force, which both ends' densities share).
       const double w = influence(shape, std::min(1.0, x * pk[3]));

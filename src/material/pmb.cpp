@@ -322,13 +322,8 @@ void pmb_stress(const NodeSet& ns, const BondFamilies& bf, InfluenceShape shape,
       if (!(b > 0.0)) continue;
       const std::uint32_t j = bf.neighbor[k];
       const double L = bf.length(k);
-      double xi[3] = {0, 0, 0}, y[3] = {0, 0, 0}, r = 0;
-      for (int d = 0; d < ns.dim; ++d) {
-        xi[d] = ns.x[d][j] - ns.x[d][i];
-        y[d] = ns.cur[4 * j + d] - ns.cur[4 * i + d];
-        r += y[d] * y[d];
-      }
-      r = std::sqrt(r);
+      double xi[3], y[3];
+      const double r = bond_vectors(ns, i, j, xi, y);
       const double s = r / L - 1.0 - thermal_strain;
       // 1/2 f (x) xi with f = c g s beta V e: the derivative of W_i = c/4 sum g s^2 xi beta V.
       const double f = 0.5 * ns.micromodulus[i] * influence(shape, std::min(1.0, L / ns.horizon[i])) *
