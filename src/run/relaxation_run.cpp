@@ -90,7 +90,9 @@ RunResult run_relaxation(const Deck& dk, const RunOptions& opt) {
   j["wall_time_s"] = std::chrono::duration<double>(clock::now() - t_start).count();
   if (opt.write_files) {
     if (dk.output.load_displacement)
-      write_load_displacement_png(dir, hist.text_so_far(), *dk.output.load_displacement, m);
+      write_load_displacement_png(
+          dir, hist.text_so_far(), *dk.output.load_displacement, m,
+          !dk.initial_displacement[0] && !dk.initial_displacement[1] && !dk.initial_displacement[2]);
     hist.finish();
     write_file_atomically(dir + "/summary.json", [&](std::ostream& o) { o << j.dump(2) << "\n"; });
   }

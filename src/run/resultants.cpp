@@ -109,7 +109,8 @@ Vec3 equilibrium_reaction(const Model& m, const PrescribedMotion& pm,
 }
 
 void write_load_displacement_png(const std::string& dir, const std::string& history,
-                                 const LoadDisplacementPlot& plot, const Model& m) {
+                                 const LoadDisplacementPlot& plot, const Model& m,
+                                 bool from_origin) {
   bool is_bc = false;
   for (const PrescribedMotion& p : m.motions) is_bc = is_bc || p.name == plot.name;
   const std::string base = column_name(is_bc ? "bc_" : "load_", plot.name);
@@ -129,6 +130,7 @@ void write_load_displacement_png(const std::string& dir, const std::string& hist
   const auto ui = std::find(head.begin(), head.end(), ucol) - head.begin();
   if (fi >= static_cast<long>(head.size()) || ui >= static_cast<long>(head.size())) return;
   PlotSeries ps{plot.name, {}, {}};
+  if (from_origin) ps.x.push_back(0.0), ps.y.push_back(0.0);
   while (std::getline(in, line)) {
     const std::vector<std::string> row = split(line);
     if (row.size() != head.size()) continue;

@@ -43,8 +43,10 @@ Vec3 equilibrium_reaction(const Model& m, const PrescribedMotion& pm,
                             double load_amplitude_factor);
 
 // output.load_displacement: the chosen pair of history columns drawn against each other into
-// DIR/load_displacement.png (nothing when the history lacks them).
+// DIR/load_displacement.png (nothing when the history lacks them). `from_origin`: the curve
+// starts at (0, 0), the unloaded state the history has no row of (relaxation runs).
 void write_load_displacement_png(const std::string& dir, const std::string& history,
-                                 const LoadDisplacementPlot& plot, const Model& m);
+                                 const LoadDisplacementPlot& plot, const Model& m,
+                                 bool from_origin = false);
 
 }  // namespace periadapt
