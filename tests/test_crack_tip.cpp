@@ -3,7 +3,9 @@
 // the pre-crack end, and counts as initiated once it is `advance` ahead.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <vector>
 
 #include "analysis/crack_tip.hpp"
 #include "analysis/refinement_coverage.hpp"
@@ -106,17 +108,14 @@ TEST(CrackTip, MirrorAsymmetryIsTheHausdorffDistanceBetweenTheMirroredBranches) 
   EXPECT_NEAR(*tr.mirror_asymmetry(ns), 0.3, 1e-12);
 }
 
-TEST(CrackTip, BranchingIsTracedBackToTheForkAndTimedWhenTheTipPassedIt) {
-  // A crack along y = 0 (x = 0.5 ... 4.5, spacing 1) that forks into two 45-deg branches, nodes
-  // (4.5 + k, +-k), k = 1..4. The front is at x = 4.5 + t at time t. The branches are more than
-  // branch_gap = 5 apart first at x = 7.5 (gap 6, t = 3: the separation); cross-sections
-  // x = 6.5 and 5.5 still show two bands (gaps 4 and 2 > 1.5 spacings), x = 4.5 one: the fork is
-  // at the start of the x = 5.5 column, 5.0, and the tip passed it at t = 1.
+namespace {
+// Runs a tracker over a crack whose front is at x = 4.5 + t at time t = 0 ... 5 (nodes at or
+// behind the front damaged), for the nodes `points` (spacing 1): tip measured along x from the
+// origin, columns one spacing wide, branches counted apart beyond a gap of 5.
+CrackTipTracker track_fork(const std::vector<std::array<double, 2>>& points) {
   NodeSet ns;
   ns.dim = 2;
-  auto add = [&](double x, double y) { ns.family_weight[ns.append({x, y, 0.0}, 1.0, 1.0)] = 1.0; };
-  for (int k = 0; k < 5; ++k) add(0.5 + k, 0.0);
-  for (int k = 1; k <= 4; ++k) add(4.5 + k, k), add(4.5 + k, -k);
+  for (const auto& p : points) ns.family_weight[ns.append({p[0], p[1], 0.0}, 1.0, 1.0)] = 1.0;
   CrackTipOptions o;
   o.origin = {0.0, 0.0, 0.0};
   o.direction = {1.0, 0.0, 0.0};
@@ -130,6 +129,20 @@ TEST(CrackTip, BranchingIsTracedBackToTheForkAndTimedWhenTheTipPassedIt) {
     for (std::size_t i = 0; i < ns.size(); ++i) ns.broken_weight[i] = ns.x[0][i] <= 4.5 + t ? 0.5 : 0.0;
     tr.observe(ns, t);
   }
+  return tr;
+}
+}  // namespace
+
+TEST(CrackTip, BranchingIsTracedBackToTheForkAndTimedWhenTheTipPassedIt) {
+  // A crack along y = 0 (x = 0.5 ... 4.5, spacing 1) that forks into two 45-deg branches, nodes
+  // (4.5 + k, +-k), k = 1..4. The branches are more than branch_gap = 5 apart first at x = 7.5
+  // (gap 6, t = 3: the separation); cross-sections x = 6.5 and 5.5 still show two bands (gaps 4
+  // and 2 > 1.5 spacings), x = 4.5 one: the fork is at the start of the x = 5.5 column, 5.0, and
+  // the tip passed it at t = 1.
+  std::vector<std::array<double, 2>> points;
+  for (int k = 0; k < 5; ++k) points.push_back({0.5 + k, 0.0});
+  for (int k = 1; k <= 4; ++k) points.push_back({4.5 + k, 1.0 * k}), points.push_back({4.5 + k, -1.0 * k});
+  const CrackTipTracker tr = track_fork(points);
   ASSERT_TRUE(tr.branching_time() && tr.separation_time());
   EXPECT_DOUBLE_EQ(*tr.separation_time(), 3.0);
   EXPECT_DOUBLE_EQ((*tr.separation_point())[0], 7.5);
@@ -142,24 +155,10 @@ TEST(CrackTip, AForkIsNotTracedBackIntoATrunkTwoNodesThick) {
   // band, its nodes touch). Cross-section x = 4.5 shows gap 1 < 1.5 spacings, one band, so the
   // fork stays at 5.0, passed at t = 1; a rule that split bands at every spacing would trace it
   // back through the trunk to the origin.
-  NodeSet ns;
-  ns.dim = 2;
-  auto add = [&](double x, double y) { ns.family_weight[ns.append({x, y, 0.0}, 1.0, 1.0)] = 1.0; };
-  for (int k = 0; k < 5; ++k) add(0.5 + k, 0.0), add(0.5 + k, 1.0);
-  for (int k = 1; k <= 4; ++k) add(4.5 + k, k + 0.5), add(4.5 + k, -k + 0.5);
-  CrackTipOptions o;
-  o.origin = {0.0, 0.0, 0.0};
-  o.direction = {1.0, 0.0, 0.0};
-  o.advance = 1.0;
-  o.column = 1.0;
-  o.branch_gap = 5.0;
-  o.link = 1.5;
-  o.seed_radius = 1.0;
-  CrackTipTracker tr(o);
-  for (int t = 0; t <= 5; ++t) {
-    for (std::size_t i = 0; i < ns.size(); ++i) ns.broken_weight[i] = ns.x[0][i] <= 4.5 + t ? 0.5 : 0.0;
-    tr.observe(ns, t);
-  }
+  std::vector<std::array<double, 2>> points;
+  for (int k = 0; k < 5; ++k) points.push_back({0.5 + k, 0.0}), points.push_back({0.5 + k, 1.0});
+  for (int k = 1; k <= 4; ++k) points.push_back({4.5 + k, k + 0.5}), points.push_back({4.5 + k, -k + 0.5});
+  const CrackTipTracker tr = track_fork(points);
   ASSERT_TRUE(tr.branching_time() && tr.separation_time());
   EXPECT_DOUBLE_EQ((*tr.branching_point())[0], 5.0);
   EXPECT_DOUBLE_EQ(*tr.branching_time(), 1.0);
