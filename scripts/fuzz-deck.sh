@@ -13,7 +13,7 @@ if ! command -v clang++ > /dev/null; then
 fi
 mkdir -p "$out/corpus"
 flags=(-std=c++20 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -Isrc)
-clang++ "${flags[@]}" fuzz/deck_fuzzer.cpp fuzz/surface_mesh_stub.cpp src/input/deck.cpp \
+clang++ "${flags[@]}" fuzz/deck_fuzzer.cpp fuzz/surface_mesh_stub.cpp src/input/deck*.cpp \
   src/input/yaml_section.cpp src/input/point_cloud.cpp \
   src/core/expression.cpp src/setup/memory_estimate.cpp src/material/micromodulus.cpp \
   -lyaml-cpp -lmuparser -lfmt -o "$out/deck_fuzzer"

@@ -1,0 +1,78 @@
+// Deck sections loads, boundary_conditions, initial_conditions and damage.
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "core/expression.hpp"
+#include "input/deck_sections.hpp"
+#include "input/yaml_section.hpp"
+
+namespace periadapt::deck_sections {
+
+void parse_loading_and_damage(Section& top, Deck& dk) {
+  // --- loads
+  for (Section l : top.list("loads")) {
+    LoadSpec ls;
+    std::string t = l.choice("type", {"traction", "body_force"});
+    ls.kind = t == "traction" ? LoadSpec::Kind::Traction : LoadSpec::Kind::BodyForce;
+    ls.name = l.text("name", l.path());
+    ls.region = parse_region(l.section("region"), dk.dim);
+    ls.value = to_vec(l.numbers("value", static_cast<std::size_t>(dk.dim),
+                                static_cast<std::size_t>(dk.dim)));
+    if (ls.kind == LoadSpec::Kind::Traction) ls.layer = l.number("layer", 0.0, non_negative());
+    ls.time = parse_time(l.optional_section("time"));
+    l.finish();
+    dk.loads.push_back(ls);
+  }
+  // --- boundary conditions
+  for (Section b : top.list("boundary_conditions")) {
+    MotionSpec ms;
+    ms.name = b.text("name", b.path());
+    ms.region = parse_region(b.section("region"), dk.dim);
+    if (b.has("velocity") == b.has("displacement"))
+      b.fail("", "a boundary condition needs exactly one of: velocity, displacement");
+    const bool vel = b.has("velocity");
+    ms.kind = vel ? MotionSpec::Kind::Velocity : MotionSpec::Kind::Displacement;
+    ms.component = parse_components(b, vel ? "velocity" : "displacement", dk.dim);
+    b.finish();
+    dk.motions.push_back(ms);
+  }
+  // --- initial conditions
+  if (auto ic = top.optional_section("initial_conditions")) {
+    if (ic->has("displacement")) dk.initial_displacement = parse_components(*ic, "displacement", dk.dim);
+    if (ic->has("velocity")) dk.initial_velocity = parse_components(*ic, "velocity", dk.dim);
+    ic->finish();
+  }
+  // --- damage
+  if (auto dmg = top.optional_section("damage")) {
+    dk.damage = dmg->boolean("enabled", true);
+    for (Section r : dmg->list("no_fail")) dk.no_fail.push_back(parse_region(r, dk.dim));
+    if (auto pd = dmg->optional_section("overlay")) {
+      // Stewart & Jeon 2019 refinement overlay: bonds re-checked on a virtual sub-grid dx / n.
+      dk.pdro.enabled = true;
+      dk.pdro.n = pd->number("n", std::nullopt, [](double v) {
+        return (v > 1.0 && v <= 20.0) ? std::string()
+                                      : std::string("the sub-grid ratio dx/dx' must be in (1, 20]");
+      });
+      if (pd->has("region")) dk.pdro.region = parse_region(pd->section("region"), dk.dim);
+      dk.pdro.interpolation = pd->choice("interpolation", {"pddo", "pim"}, "pddo") == "pim"
+                                  ? PdroInterpolation::Pim
+                                  : PdroInterpolation::Pddo;
+      dk.pdro.weight = pd->choice("weight", {"uniform", "gaussian"}, "uniform") == "gaussian"
+                           ? PddoWeight::Gaussian
+                           : PddoWeight::Uniform;
+      dk.pdro.sampling = pd->choice("sampling", {"three_pairs", "whole_bond"}, "three_pairs") == "whole_bond"
+                             ? PdroSampling::WholeBond
+                             : PdroSampling::ThreePairs;
+      pd->finish();
+      // (bond_pairing is read later: checked below with the solver section)
+    }
+    dmg->finish();
+  }
+}
+
+}  // namespace periadapt::deck_sections

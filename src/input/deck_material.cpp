@@ -1,0 +1,73 @@
+// Deck sections model and material.
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "core/expression.hpp"
+#include "input/deck_sections.hpp"
+#include "input/yaml_section.hpp"
+
+namespace periadapt::deck_sections {
+
+void parse_model_and_material(Section& top, Deck& dk) {
+  // --- model
+  {
+    Section m = top.section("model");
+    dk.dim = static_cast<int>(m.integer("dimension", std::nullopt, [](long v) {
+      return (v >= 1 && v <= 3) ? std::string() : std::string("must be 1, 2 or 3");
+    }));
+    if (dk.dim == 2) {
+      std::string p = m.choice("plane", {"stress", "strain"}, "stress");
+      dk.plane = p == "stress" ? PlaneCondition::Stress : PlaneCondition::Strain;
+    } else if (m.has("plane")) {
+      m.fail("plane", "only 2D models have a plane condition");
+    }
+    dk.thickness = m.number("thickness", 1.0, positive());
+    if (dk.dim == 3 && m.has("thickness")) m.fail("thickness", "3D models have no thickness key");
+    dk.formulation = m.choice("formulation", {"pmb", "lps"}, "pmb");
+    if (dk.formulation == "lps" && dk.dim == 1)
+      m.fail("formulation", "the state-based LPS model is for 2D and 3D; use pmb in 1D");
+    m.finish();
+  }
+  // --- material
+  {
+    Section s = top.section("material");
+    dk.material_name = s.text("name", "material");
+    dk.E = s.number("youngs_modulus", std::nullopt, positive());
+    dk.rho = s.number("density", std::nullopt, positive());
+    const double nu_bb = bond_based_poisson(dk.dim, dk.plane);
+    if (dk.formulation == "lps") {
+      dk.nu = s.number("poisson_ratio", std::nullopt, [](double v) {
+        return (v > -1.0 && v < 0.5) ? std::string()
+                                     : std::string("must be in (-1, 0.5) for the LPS model");
+      });
+    } else if (s.has("poisson_ratio")) {
+      dk.nu = s.number("poisson_ratio");
+      if (std::abs(*dk.nu - nu_bb) > 1e-3)
+        s.fail("poisson_ratio", "the bond-based PMB model fixes Poisson's ratio to " +
+                                    std::string(nu_bb > 0.3 ? "1/3 (plane stress)"
+                                                            : "1/4 (1D, 3D, plane strain)") +
+                                    "; omit the key or give that value");
+    }
+    if (s.has("fracture_energy") && s.has("critical_stretch"))
+      s.fail("critical_stretch", "give either fracture_energy or critical_stretch, not both");
+    if (s.has("fracture_energy")) dk.G0 = s.number("fracture_energy", std::nullopt, positive());
+    if (s.has("critical_stretch")) dk.s0 = s.number("critical_stretch", std::nullopt, positive());
+    dk.thermal_strain = s.number("thermal_strain", 0.0, [](double v) {
+      return std::abs(v) < 0.1 ? std::string()
+                               : std::string("alpha dT is a small strain: |value| < 0.1");
+    });
+    std::string sh = s.choice("micromodulus", {"constant", "triangular", "inverted_triangular"},
+                              "constant");
+    dk.shape = sh == "constant"     ? InfluenceShape::Constant
+               : sh == "triangular" ? InfluenceShape::Triangular
+                                    : InfluenceShape::InvertedTriangular;
+    s.finish();
+  }
+}
+
+}  // namespace periadapt::deck_sections

@@ -1,0 +1,189 @@
+// Deck sections solver and adapt, and the rules that join them to the material and damage.
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "core/expression.hpp"
+#include "input/deck_sections.hpp"
+#include "input/yaml_section.hpp"
+
+namespace periadapt::deck_sections {
+
+void parse_solver(Section& top, Deck& dk) {
+  // --- solver
+  {
+    Section s = top.section("solver");
+    const std::string type = s.choice("type", {"explicit", "static", "relaxation"}, "explicit");
+    if (s.has("memory_limit_gb"))
+      dk.memory_limit_gb = s.number("memory_limit_gb", std::nullopt, [](double v) {
+        return (v > 0 && v <= 1e6) ? std::string() : std::string("must be in (0, 1e6] GB");
+      });
+    dk.solver = type == "static"       ? Deck::SolverType::Static
+                : type == "relaxation" ? Deck::SolverType::Relaxation
+                                       : Deck::SolverType::Explicit;
+    if (dk.solver == Deck::SolverType::Relaxation) {
+      for (const char* k : {"time_step", "end_time", "steps", "safety_factor", "multirate",
+                            "multirate_ratio", "allow_unstable_time_step"})
+        if (s.has(k))
+          s.fail(k, "dynamic relaxation has no physical time step; use load_steps, tolerance "
+                    "and max_iterations");
+      dk.load_steps = static_cast<int>(s.integer("load_steps", 1, [](long v) {
+        return (v >= 1 && v <= 1000000) ? std::string() : std::string("must be in 1 ... 1e6");
+      }));
+      dk.relax_tolerance = s.number("tolerance", 1e-6, [](double v) {
+        return (v > 0 && v < 1) ? std::string() : std::string("a relative residual in (0, 1)");
+      });
+      dk.relax_max_iterations = s.integer("max_iterations", 200000, [](long v) {
+        return v >= 1 ? std::string() : std::string("must be >= 1");
+      });
+    } else if (dk.solver == Deck::SolverType::Static) {
+      if (dk.formulation == "lps")
+        s.fail("type", "the linear static solve assembles the bond-based stiffness; for the LPS "
+                       "model use type: relaxation");
+      // Linearized equilibrium: no time stepping keys, no bond breaking.
+      for (const char* k : {"time_step", "end_time", "steps", "safety_factor", "multirate",
+                            "multirate_ratio", "allow_unstable_time_step"})
+        if (s.has(k))
+          s.fail(k, "a static solve has no time stepping; remove this key or use type: explicit");
+      dk.damage = false;
+    } else {
+      if (s.has("time_step")) dk.time_step = s.number("time_step", std::nullopt, positive());
+      dk.safety = s.number("safety_factor", 0.8, [](double v) {
+        return (v > 0 && v <= 1) ? std::string() : std::string("must be in (0, 1]");
+      });
+      dk.allow_unstable_time_step = s.boolean("allow_unstable_time_step", false);
+      dk.multirate = s.boolean("multirate", false);
+      if (s.has("multirate_ratio") && !dk.multirate)
+        s.fail("multirate_ratio", "the largest step ratio of multi-rate stepping needs "
+                                  "multirate: true");
+      dk.multirate_ratio = static_cast<int>(s.integer("multirate_ratio", 2, [](long v) {
+        return (v >= 2 && v <= 4) ? std::string() : std::string("an integer 2, 3 or 4");
+      }));
+      if (dk.multirate && dk.formulation == "lps")
+        s.fail("multirate", "multi-rate stepping needs row-local forces: formulation: pmb (the LPS "
+                            "dilatation couples every node to its neighbours' rows)");
+      if (s.has("end_time") == s.has("steps"))
+        s.fail("", "give exactly one of end_time (s) or steps");
+      if (s.has("end_time")) dk.end_time = s.number("end_time", std::nullopt, positive());
+      if (s.has("steps"))
+        dk.steps = s.integer("steps", std::nullopt, [](long v) {
+          return v >= 1 ? std::string() : std::string("must be >= 1");
+        });
+    }
+    dk.dual_horizon =
+        s.choice("bond_pairing", {"source_horizon", "dual_horizon"}, "source_horizon") ==
+        "dual_horizon";
+    if (dk.multirate && dk.dual_horizon)
+      s.fail("multirate", "multi-rate stepping needs bond_pairing: source_horizon (dual-horizon "
+                          "forces act on both ends of a bond)");
+    s.finish();
+  }
+  if (dk.pdro.enabled && dk.dual_horizon)
+    top.fail("damage", "the refinement overlay works with bond_pairing: source_horizon (pmb or "
+                       "lps); the dual-horizon kernels do not re-check bonds");
+  if (dk.thermal_strain != 0.0 &&
+      (dk.solver != Deck::SolverType::Explicit || dk.formulation != "pmb" || dk.dual_horizon))
+    top.fail("material", "thermal_strain is supported by the explicit pmb solver with "
+                         "bond_pairing: source_horizon only");
+  if (dk.damage && !dk.G0 && !dk.s0)
+    top.fail("material", "damage is enabled: give material.fracture_energy (G0) or "
+                         "material.critical_stretch, or set damage.enabled: false");
+}
+
+void parse_adapt(Section& top, Deck& dk) {
+  // --- adaptive grid refinement and scaling
+  if (auto a = top.optional_section("adapt")) {
+    AdaptSpec& ad = dk.adapt;
+    int initial_top = 0;
+    for (Section z : a->list("initial_refinement")) {
+      InitialRefinement ir;
+      ir.region = parse_region(z.section("region"), dk.dim);
+      ir.level = static_cast<int>(z.integer("level", std::nullopt, [](long v) {
+        return (v >= 1 && v <= 6) ? std::string() : std::string("must be in 1 ... 6");
+      }));
+      initial_top = std::max(initial_top, ir.level);
+      z.finish();
+      ad.initial.push_back(ir);
+    }
+    ad.visibility = a->boolean("visibility", true);
+    ad.max_level = static_cast<int>(a->integer("max_level", std::max(1, initial_top), [](long v) {
+      return (v >= 1 && v <= 6) ? std::string() : std::string("must be in 1 ... 6");
+    }));
+    if (initial_top > ad.max_level)
+      a->fail("max_level", "is below the level of an initial_refinement zone (" +
+                               std::to_string(initial_top) + ")");
+    ad.method = a->choice("method", {"B", "A"}, "B") == "A" ? NodeGeneration::A : NodeGeneration::B;
+    const std::string sc = a->choice("scaling", {"delta", "m", "delta_m"}, "delta");
+    ad.scaling = sc == "delta" ? HorizonScaling::Delta
+                 : sc == "m"   ? HorizonScaling::M
+                               : HorizonScaling::DeltaM;
+    if (ad.scaling == HorizonScaling::DeltaM) {
+      ad.m_per_level = a->numbers("m_per_level", static_cast<std::size_t>(ad.max_level + 1), 64);
+      for (double v : ad.m_per_level)
+        if (!(v >= 1.0)) a->fail("m_per_level", "every m must be >= 1");
+      if (std::abs(ad.m_per_level[0] - dk.horizon_factor) > 1e-9 * dk.horizon_factor)
+        a->fail("m_per_level", "the first entry is level 0 and must equal the grid's m = " +
+                                   std::to_string(dk.horizon_factor));
+    } else if (a->has("m_per_level")) {
+      a->fail("m_per_level", "only used with scaling: delta_m");
+    }
+    ad.start_time = a->number("start_time", 0.0, non_negative());
+    ad.check_every = static_cast<int>(a->integer("check_every", 1, [](long v) {
+      return v >= 1 ? std::string() : std::string("must be >= 1");
+    }));
+    if (a->has("energy_trigger"))
+      ad.energy_fraction = a->number("energy_trigger", std::nullopt, [](double v) {
+        return (v > 0 && v <= 1) ? std::string()
+                                 : std::string("a fraction of the maximum energy density in (0, 1]");
+      });
+    if (a->has("stretch_trigger"))
+      ad.stretch_fraction = a->number("stretch_trigger", std::nullopt, [](double v) {
+        return (v > 0 && v <= 1) ? std::string()
+                                 : std::string("a fraction of the finest level's critical stretch "
+                                               "in (0, 1]");
+      });
+    // A deck that names no trigger and no initial zone gets the triggers that need no tuning:
+    // bonds at half the finest level's critical stretch, and damage growth on a coarse node.
+    const bool defaults = !ad.energy_fraction && !ad.stretch_fraction &&
+                          !a->has("damage_trigger") && ad.initial.empty() &&
+                          dk.solver == Deck::SolverType::Explicit;
+    if (defaults) ad.stretch_fraction = kDefaultStretchTrigger;
+    ad.damage_trigger = a->boolean("damage_trigger", defaults);
+    // With the automatic triggers the zone follows the stretch field closely, and its interfaces
+    // come near stressed free surfaces: without the correction a crack starts where an interface
+    // meets a hole instead of at the hole's stress peak.
+    ad.interface_horizon = a->boolean("interface_horizon", defaults);
+    ad.refine_loads = a->boolean("refine_loads", defaults && ad.method == NodeGeneration::B);
+    if (ad.refine_loads && ad.method == NodeGeneration::A)
+      a->fail("refine_loads", "method a shrinks the loaded parents' cells without handing the "
+                              "lost load to the new nodes; use method b");
+    ad.total_energy = a->choice("energy", {"strain", "total"}, "strain") == "total";
+    ad.coarsen = a->boolean("coarsen", false);
+    ad.conserve_energy = a->boolean("conserve_energy", false);
+    if (ad.coarsen && ad.method == NodeGeneration::A)
+      a->fail("coarsen", "coarsening restores parents from their children (method b); method a "
+                         "keeps the parents and is not coarsened");
+    if (ad.coarsen && !ad.energy_fraction)
+      a->fail("coarsen", "coarsening needs the energy trigger (it coarsens where the energy "
+                         "is below the trigger level)");
+    ad.visibility_factor = a->number("visibility_factor", 1.0, [](double v) {
+      return (v >= 1.0 && v <= 20.0) ? std::string() : std::string("must be in [1, 20] horizons");
+    });
+    ad.enabled = ad.energy_fraction || ad.stretch_fraction || ad.damage_trigger;
+    if (!ad.enabled && ad.initial.empty())
+      a->fail("", "give at least one trigger (stretch_trigger: fraction of the critical stretch, "
+                  "energy_trigger: fraction of W_max, damage_trigger: true) or an "
+                  "initial_refinement zone");
+    if (ad.enabled && dk.solver != Deck::SolverType::Explicit)
+      a->fail("", "refinement triggers work with the explicit solver only; static and relaxation "
+                  "runs take initial_refinement zones");
+    if (a->has("region")) ad.region = parse_region(a->section("region"), dk.dim);
+    a->finish();
+  }
+}
+
+}  // namespace periadapt::deck_sections
