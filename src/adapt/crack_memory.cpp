@@ -120,8 +120,22 @@ std::vector<std::uint32_t> rebuild_families(Model& m, const CrackMemory& mem,
         broken_pairs.push_back(pair_key(static_cast<std::uint32_t>(i), bf.neighbor[k]));
   }
   std::sort(broken_pairs.begin(), broken_pairs.end());
-  if (global)
+  // History laws: the rows searched again get their surviving bonds' histories back.
+  std::vector<std::pair<std::uint64_t, double>> histories;
+  if (bf.keeps_state) {
+    for (std::size_t i = 0; i < std::min(n_before, bf.num_nodes()); ++i) {
+      if (!rebuild[i] && !global) continue;
+      for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k)
+        if (BondFamilies::intact(bf.beta[k]) && bf.state[k] != 0.0)
+          histories.emplace_back(pair_key(static_cast<std::uint32_t>(i), bf.neighbor[k]), bf.state[k]);
+    }
+    std::sort(histories.begin(), histories.end());
+  }
+  if (global) {
+    const bool keeps_state = bf.keeps_state;
     bf = build_families(ns, m.quadrature);
+    if (keeps_state) bf.enable_state();
+  }
   else if (appended_only) {
     // Unchanged old nodes keep their old neighbours (those still active) and bond states.
     std::vector<char> patch(ns.size(), 0);
@@ -162,8 +176,13 @@ std::vector<std::uint32_t> rebuild_families(Model& m, const CrackMemory& mem,
       if (!BondFamilies::intact(bf.beta[k])) continue;
       bool broken = false;
       if (i < n_before && j < n_before) {
-        broken = std::binary_search(broken_pairs.begin(), broken_pairs.end(),
-                                    pair_key(static_cast<std::uint32_t>(i), j));
+        const std::uint64_t key = pair_key(static_cast<std::uint32_t>(i), j);
+        broken = std::binary_search(broken_pairs.begin(), broken_pairs.end(), key);
+        if (!histories.empty()) {
+          const auto h = std::lower_bound(histories.begin(), histories.end(),
+                                          std::pair<std::uint64_t, double>{key, -INFINITY});
+          if (h != histories.end() && h->first == key) bf.state[k] = h->second;
+        }
       } else if (fgrid) {
         const Vec3 xi{ns.x[0][i], ns.x[1][i], D == 3 ? ns.x[2][i] : 0.0},
             xj{ns.x[0][j], ns.x[1][j], D == 3 ? ns.x[2][j] : 0.0};

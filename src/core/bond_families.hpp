@@ -26,6 +26,12 @@ struct BondFamilies {
   std::vector<double> inv_length;  // 1/|xi|, negative when the bond cannot break
   std::vector<float> beta;
 
+  // History laws only (material/bond_law.hpp): each bond's history value (plastic stretch,
+  // largest stretch), carried with the bond through row rebuilds and compactions; a new bond
+  // starts at 0. Empty, and keeps_state false, for PMB and LPS.
+  bool keeps_state = false;
+  std::vector<double> state;
+
   // Dual-horizon form only: for each node, the bonds of other nodes' families that point at it
   // (the transpose): owner node and bond index. Empty otherwise.
   std::vector<std::uint64_t> t_offsets;
@@ -35,6 +41,12 @@ struct BondFamilies {
   // the other end (8 B per bond slot; empty for other forms).
   std::vector<double> dual_force;
 
+  // Gives every bond slot a history value of 0 (with the arrays' spare room).
+  void enable_state() {
+    keeps_state = true;
+    state.reserve(neighbor.capacity());
+    state.assign(neighbor.size(), 0.0);
+  }
   std::size_t num_nodes() const { return offsets.size() - 1; }
   std::size_t num_bonds() const { return live; }
   std::uint64_t begin(std::size_t i) const { return offsets[i]; }

@@ -14,6 +14,7 @@ struct Entry {
   std::uint32_t j;
   float beta;
   double inv_len;
+  double state = 0;  // history laws: the bond's history value
 };
 
 }  // namespace
@@ -115,6 +116,7 @@ class FamilySearch {
       fam.neighbor[at] = e.j;
       fam.inv_length[at] = e.inv_len;
       fam.beta[at] = e.beta;
+      if (fam.keeps_state) fam.state[at] = e.state;
       ++at;
     }
   }
@@ -169,6 +171,7 @@ void grow_bond_arrays(BondFamilies& fam, std::size_t total,
   fit(fam.neighbor);
   fit(fam.inv_length);
   fit(fam.beta);
+  if (fam.keeps_state) fit(fam.state);
 }
 
 }  // namespace
@@ -242,7 +245,8 @@ void rebuild_rows(BondFamilies& fam, const NodeSet& nodes, const QuadratureSpec&
     std::vector<Entry>& out = found[r];
     for (std::uint64_t k = fam.offsets[i]; k < fam.ends[i]; ++k)
       if (nodes.flags[fam.neighbor[k]] & kActive)
-        out.push_back({fam.neighbor[k], fam.beta[k], fam.inv_length[k]});
+        out.push_back({fam.neighbor[k], fam.beta[k], fam.inv_length[k],
+                       fam.keeps_state ? fam.state[k] : 0.0});
     if (!fresh.empty()) newcomers.collect(i, out, true);
   }
   std::uint64_t appended = 0, dropped = 0;
@@ -256,6 +260,7 @@ void rebuild_rows(BondFamilies& fam, const NodeSet& nodes, const QuadratureSpec&
   // one copy, rows back in node order, the rebuilt ones taken from the search.
   if (total > fam.neighbor.capacity() || total - live > live / 4) {
     BondFamilies c;
+    c.keeps_state = fam.keeps_state;
     c.offsets.assign(n + 1, 0);
     std::vector<std::uint32_t> slot(n, UINT32_MAX);  // row -> index into `found`
     for (std::size_t r = 0; r < list.size(); ++r) slot[list[r]] = static_cast<std::uint32_t>(r);
@@ -275,6 +280,8 @@ void rebuild_rows(BondFamilies& fam, const NodeSet& nodes, const QuadratureSpec&
       std::copy(fam.neighbor.begin() + b, fam.neighbor.begin() + e, c.neighbor.begin() + o);
       std::copy(fam.inv_length.begin() + b, fam.inv_length.begin() + e, c.inv_length.begin() + o);
       std::copy(fam.beta.begin() + b, fam.beta.begin() + e, c.beta.begin() + o);
+      if (fam.keeps_state)
+        std::copy(fam.state.begin() + b, fam.state.begin() + e, c.state.begin() + o);
     }
     c.close_contiguous();
     fam = std::move(c);

@@ -34,6 +34,8 @@ void bond_arrays(Archive& a, BF& bf) {
   a(bf.neighbor);
   a(bf.inv_length);
   a(bf.beta);
+  a(bf.keeps_state);
+  a(bf.state);
   a(bf.t_offsets);
   a(bf.t_owner);
   a(bf.t_bond);
@@ -98,7 +100,8 @@ void restore_model_state(ArchiveReader& r, Model& m) {
   const BondFamilies& bf = m.bonds;
   if (bf.offsets.size() != n + 1 || (!bf.ends.empty() && bf.ends.size() != n) ||
       bf.neighbor.size() < bf.offsets.back() || bf.inv_length.size() != bf.neighbor.size() ||
-      bf.beta.size() != bf.neighbor.size())
+      bf.beta.size() != bf.neighbor.size() ||
+      bf.state.size() != (bf.keeps_state ? bf.neighbor.size() : 0))
     throw ArchiveError("the checkpoint's bond arrays do not fit its nodes (corrupt)");
   for (std::uint32_t j : bf.neighbor)
     if (j >= n) throw ArchiveError("the checkpoint's bonds name a node it does not hold (corrupt)");
@@ -108,6 +111,7 @@ void restore_model_state(ArchiveReader& r, Model& m) {
   m.bonds.neighbor.reserve(room);
   m.bonds.inv_length.reserve(room);
   m.bonds.beta.reserve(room);
+  if (m.bonds.keeps_state) m.bonds.state.reserve(room);
   r.tag("LOAD");
   if (r.get<std::uint64_t>() != m.loads.size())
     throw ArchiveError("the checkpoint's number of loads differs from the deck's");

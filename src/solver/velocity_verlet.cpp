@@ -504,6 +504,7 @@ void VelocityVerlet::undo_last_step() {
   }
   std::copy(saved_.broken_weight.begin(), saved_.broken_weight.end(), ns.broken_weight.begin());
   for (std::uint64_t k : saved_.broken_log) m_.bonds.beta[k] = std::abs(m_.bonds.beta[k]);
+  if (m_.bonds.keeps_state) m_.bonds.state = saved_.bond_state;
   saved_.broken_log.clear();
   for (std::size_t i = 0; i < n; ++i) ns.sync_current(i);
   v_prev_fixed_ = saved_.v_prev_fixed;
@@ -551,6 +552,7 @@ bool VelocityVerlet::step() {
     saved_.broken_total = broken_total_;
     saved_.bond_evals = bond_evals_;
     saved_.broken_log.clear();
+    if (m_.bonds.keeps_state) saved_.bond_state = m_.bonds.state;
   }
   for (std::size_t q = 0; q < fixed_dofs_.size(); ++q)
     v_prev_fixed_[q] = ns.v[fixed_dofs_[q] % 3][fixed_dofs_[q] / 3];

@@ -157,6 +157,7 @@ class VelocityVerlet {
     long step = 0;
     std::size_t broken_total = 0;
     std::vector<std::uint64_t> broken_log;
+    std::vector<double> bond_state;  // history laws: every bond's history at the step start
   } saved_;
   // Constrained degrees of freedom, flattened (node*3 + component), with reaction densities.
   std::vector<std::size_t> fixed_dofs_;
