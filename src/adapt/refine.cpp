@@ -30,12 +30,17 @@ void scale_material_to_horizon(Model& m, std::size_t i) {
   const double d = ns.horizon[i];
   ns.micromodulus[i] =
       micromodulus_c0(ns.dim, mat.plane, mat.shape, mat.bb_equivalent_E, d, mat.thickness);
-  if (mat.G0 > 0)
+  if (mat.G0 > 0) {
     ns.critical_stretch[i] =
         mat.lps ? lps_critical_stretch(ns.dim, mat.lps_constants, d, mat.G0)
                 : critical_stretch_from_g0(ns.dim, mat.shape, ns.micromodulus[i], d,
                                            mat.thickness, mat.G0);
-  else if (std::isfinite(mat.s0))
+    // A history law's onset is a stress, the same at every horizon; its breaking stretch
+    // follows the brittle one so that a crack still dissipates G0.
+    if (mat.bond_law)
+      ns.critical_stretch[i] =
+          mat.bond_law->breaking_stretch(ns.critical_stretch[i], mat.onset_stretch);
+  } else if (std::isfinite(mat.s0))
     // s0 given directly: keep the fracture energy it implies at the base horizon (s0 ~ delta^-1/2).
     ns.critical_stretch[i] = mat.s0 * std::sqrt(m.horizon / d);
   else

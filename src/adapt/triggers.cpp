@@ -79,8 +79,12 @@ std::vector<std::uint32_t> stretch_trigger(const Model& m, const AdaptSpec& spec
     if (!refinable[i]) continue;
     // s0 ~ delta^(-1/2) for every law and scaling (thesis Eqs. 2.15, 2.21): the critical stretch
     // of this node's children.
-    const double limit = beta * ns.critical_stretch[i] *
-                         std::sqrt(ns.horizon[i] / level_horizon(m, spec, ns.level[i] + 1));
+    // A history law is refined before its bonds leave the elastic branch: children start with
+    // fresh histories.
+    const double limit =
+        beta * std::min(m.material.onset_stretch,
+                        ns.critical_stretch[i] *
+                            std::sqrt(ns.horizon[i] / level_horizon(m, spec, ns.level[i] + 1)));
     if (tracked) {
       hot[i] = m.breakable_stretch[i] >= limit;
       continue;

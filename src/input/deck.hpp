@@ -74,12 +74,13 @@ struct Deck {
   int dim = 2;
   PlaneCondition plane = PlaneCondition::None;
   double thickness = 1.0;
-  std::string formulation = "pmb";
+  std::string formulation = "pmb";  // pmb, lps or a history law of material/bond_laws.cpp
   // material
   std::string material_name = "material";
   double E = 0, rho = 0;
   std::optional<double> nu, G0, s0;
   double thermal_strain = 0.0;  // alpha dT, subtracted from every bond stretch
+  double law_stress = 0.0;      // a history law's stress key (yield_stress, peak_stress)
   InfluenceShape shape = InfluenceShape::Constant;
   // discretization
   GridSpec grid;

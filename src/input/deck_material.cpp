@@ -9,6 +9,7 @@
 
 #include "core/expression.hpp"
 #include "input/deck_sections.hpp"
+#include "material/bond_law.hpp"
 #include "input/yaml_section.hpp"
 
 namespace periadapt::deck_sections {
@@ -28,7 +29,9 @@ void parse_model_and_material(Section& top, Deck& dk) {
     }
     dk.thickness = m.number("thickness", 1.0, positive());
     if (dk.dim == 3 && m.has("thickness")) m.fail("thickness", "3D models have no thickness key");
-    dk.formulation = m.choice("formulation", {"pmb", "lps"}, "pmb");
+    std::vector<std::string> formulations{"pmb", "lps"};
+    for (const BondLaw* law : bond_laws()) formulations.emplace_back(law->name);
+    dk.formulation = m.choice("formulation", formulations, "pmb");
     if (dk.formulation == "lps" && dk.dim == 1)
       m.fail("formulation", "the state-based LPS model is for 2D and 3D; use pmb in 1D");
     m.finish();
@@ -61,6 +64,17 @@ void parse_model_and_material(Section& top, Deck& dk) {
       return std::abs(v) < 0.1 ? std::string()
                                : std::string("alpha dT is a small strain: |value| < 0.1");
     });
+    if (const BondLaw* law = find_bond_law(dk.formulation)) {
+      dk.law_stress = s.number(std::string(law->stress_key), std::nullopt, positive());
+      if (law->needs_fracture_energy && !s.has("fracture_energy"))
+        s.fail("fracture_energy", "formulation " + dk.formulation +
+                                      " needs the fracture energy G0 (J/m^2): its bonds soften "
+                                      "until they have dissipated it");
+      if (s.has("critical_stretch"))
+        s.fail("critical_stretch", "formulation " + dk.formulation +
+                                       " derives its breaking stretch from fracture_energy; give "
+                                       "that instead");
+    }
     std::string sh = s.choice("micromodulus", {"constant", "triangular", "inverted_triangular"},
                               "constant");
     dk.shape = sh == "constant"     ? InfluenceShape::Constant

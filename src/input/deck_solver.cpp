@@ -9,6 +9,7 @@
 
 #include "core/expression.hpp"
 #include "input/deck_sections.hpp"
+#include "material/bond_law.hpp"
 #include "input/yaml_section.hpp"
 
 namespace periadapt::deck_sections {
@@ -77,11 +78,18 @@ void parse_solver(Section& top, Deck& dk) {
     dk.dual_horizon =
         s.choice("bond_pairing", {"source_horizon", "dual_horizon"}, "source_horizon") ==
         "dual_horizon";
+    if (dk.dual_horizon && find_bond_law(dk.formulation))
+      s.fail("bond_pairing", "formulation " + dk.formulation +
+                                 " runs in the source-horizon form; use bond_pairing: "
+                                 "source_horizon");
     if (dk.multirate && dk.dual_horizon)
       s.fail("multirate", "multi-rate stepping needs bond_pairing: source_horizon (dual-horizon "
                           "forces act on both ends of a bond)");
     s.finish();
   }
+  if (dk.pdro.enabled && find_bond_law(dk.formulation))
+    top.fail("damage", "the refinement overlay re-checks brittle bonds (pmb or lps); formulation " +
+                           dk.formulation + " breaks bonds by its own history");
   if (dk.pdro.enabled && dk.dual_horizon)
     top.fail("damage", "the refinement overlay works with bond_pairing: source_horizon (pmb or "
                        "lps); the dual-horizon kernels do not re-check bonds");

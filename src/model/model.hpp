@@ -2,6 +2,7 @@
 // The simulation model the solvers act on: nodes, bond families, material law, loads and
 // prescribed motions. Built from a deck by build_model(); mutated between steps by adaptivity.
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -14,6 +15,7 @@
 #include "discretize/families.hpp"
 #include "discretize/precrack.hpp"
 #include "discretize/surface_correction.hpp"
+#include "material/bond_law.hpp"
 #include "material/lps.hpp"
 #include "material/micromodulus.hpp"
 #include "overlay/pdro.hpp"
@@ -50,6 +52,9 @@ struct MaterialLaw {
   // Ordinary state-based LPS instead of bond-based PMB (any Poisson ratio).
   bool lps = false;
   LpsConstants lps_constants;
+  // A history law (material/bond_law.hpp) instead of PMB: its elastic branch is PMB's.
+  const BondLaw* bond_law = nullptr;
+  double onset_stretch = INFINITY;  // where the history law leaves its elastic branch
   // Young's modulus of the bond-based material with the same P-wave modulus: its micromodulus
   // (stored per node) drives the stable time step and the relaxation masses for both models.
   double bb_equivalent_E = 0;
@@ -82,6 +87,11 @@ struct Model {
   bool track_breakable_stretch = false;
   std::vector<double> breakable_stretch;
 };
+
+// "PMB", "LPS" or the history law's name, for banners.
+inline std::string formulation_name(const MaterialLaw& mat) {
+  return mat.bond_law ? std::string(mat.bond_law->name) : mat.lps ? "LPS" : "PMB";
+}
 
 // Bytes per node for memory reports: the node arrays, the bond-row index and, with loads, the
 // solver's body-force densities.

@@ -19,6 +19,35 @@
 
 namespace periadapt {
 
+namespace {
+
+// The linear solve is a history law's elastic branch: valid while no breakable bond passes the
+// law's onset stretch.
+void refuse_beyond_elastic_branch(const Deck& dk, const Model& m) {
+  const NodeSet& ns = m.nodes;
+  const BondFamilies& bf = m.bonds;
+  double smax = -INFINITY;
+  std::size_t at = 0;
+  for (std::size_t i = 0; i < ns.size(); ++i) {
+    if (!(ns.flags[i] & kActive) || (ns.flags[i] & kNoFail)) continue;
+    for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {
+      if (!BondFamilies::intact(bf.beta[k]) || !bf.breakable(k)) continue;
+      double xi[3], y[3];
+      const double s = bond_vectors(ns, i, bf.neighbor[k], xi, y) / bf.length(k) - 1.0;
+      if (s > smax) smax = s, at = i;
+    }
+  }
+  if (smax > m.material.onset_stretch)
+    throw DeckError(dk.file, 0, 0, "solver.type",
+                    fmt::format("the linear static solve is the elastic branch of formulation {}, "
+                                "but a bond of node {} at ({:.4g}, {:.4g}, {:.4g}) reaches stretch "
+                                "{:.4g}, past the onset {:.4g}; use type: relaxation",
+                                m.material.bond_law->name, at, ns.x[0][at], ns.x[1][at],
+                                ns.x[2][at], smax, m.material.onset_stretch));
+}
+
+}  // namespace
+
 RunResult run_static(const Deck& dk, const RunOptions& opt) {
   using clock = std::chrono::steady_clock;
   const auto t_start = clock::now();
@@ -38,6 +67,7 @@ RunResult run_static(const Deck& dk, const RunOptions& opt) {
   } catch (const std::invalid_argument& e) {
     throw DeckError(dk.file, 0, 0, "boundary_conditions", e.what());
   }
+  if (m.material.bond_law) refuse_beyond_elastic_branch(dk, m);
   const double rel = sr.load_norm > 0 ? sr.residual_norm / sr.load_norm : sr.residual_norm;
   if (!opt.quiet)
     fmt::print("static solve: {} unknowns, {} nonzeros, {} ({} iterations), residual {:.3e} "

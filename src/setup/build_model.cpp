@@ -3,6 +3,8 @@
 #include "adapt/refine.hpp"
 #include "discretize/surface_correction.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <chrono>
 
@@ -55,11 +57,24 @@ Model build_model(const Deck& dk) {
                           p_wave_modulus(dk.dim, dk.plane, 1.0, bond_based_poisson(dk.dim, dk.plane));
   }
   mat.c0 = micromodulus_c0(dk.dim, dk.plane, dk.shape, mat.bb_equivalent_E, dk.horizon, dk.thickness);
+  if ((mat.bond_law = find_bond_law(dk.formulation)))
+    mat.onset_stretch = dk.law_stress / all_round_modulus(dk.dim, dk.plane, dk.E);
   if (dk.G0) {
     mat.G0 = *dk.G0;
     mat.s0 = mat.lps ? lps_critical_stretch(dk.dim, mat.lps_constants, dk.horizon, *dk.G0)
                      : critical_stretch_from_g0(dk.dim, dk.shape, mat.c0, dk.horizon,
                                                 dk.thickness, *dk.G0);
+    if (mat.bond_law) {
+      // Past the brittle critical stretch the law could not dissipate G0 (it would yield or
+      // soften after a brittle bond had already broken).
+      if (!(mat.onset_stretch < mat.s0))
+        throw DeckError(dk.file, 0, 0, "material." + std::string(mat.bond_law->stress_key),
+                        fmt::format("{} Pa is a bond stretch of {:.4g}, at or above {:.4g}, where "
+                                    "a brittle bond breaks with this fracture_energy and horizon; "
+                                    "give a smaller stress or a larger fracture_energy",
+                                    dk.law_stress, mat.onset_stretch, mat.s0));
+      mat.s0 = mat.bond_law->breaking_stretch(mat.s0, mat.onset_stretch);
+    }
   } else if (dk.s0) {
     mat.s0 = *dk.s0;
   } else {
@@ -86,6 +101,7 @@ Model build_model(const Deck& dk) {
   // An adaptive run appends refined rows: spare capacity now saves its first event a copy of
   // every bond.
   m.bonds = build_families(ns, qs, dk.adapt.enabled ? kRefinementBondHeadroom : 0.0);
+  if (mat.bond_law) m.bonds.enable_state();
   m.family_build_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   m.surface_correction = dk.surface_correction;

@@ -1,0 +1,154 @@
+// Every force model through the same checks (PMB, LPS and each registered history law of
+// material/bond_laws.cpp): a new law is covered here without editing this file.
+//  - momentum: internal forces of a random deformation sum to zero (sum f_i V_i);
+//  - energy density of a homogeneous isotropic expansion of the elastic branch equals the
+//    classical value at interior nodes (sub-cell quadrature, 2% at m = 3);
+//  - a homogeneous deformation leaves interior nodes without force;
+//  - thread independence: 1 and 2 threads give the same forces and histories bit for bit.
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "material/bond_law.hpp"
+#include "setup/build_model.hpp"
+#include "solver/internal_forces.hpp"
+#include "test_helpers.hpp"
+
+using namespace periadapt;
+
+namespace {
+
+struct LawCase {
+  std::string formulation;
+  std::string keys;  // extra material keys
+};
+
+std::vector<LawCase> every_law() {
+  std::vector<LawCase> out{{"pmb", ""}, {"lps", "poisson_ratio: 0.3, "}};
+  // A history law's stress key at half the brittle critical stretch's stress (E = 1e9,
+  // G0 = 10, delta = 3 mm: s0 ~ 1.1e-3 in 2D, 8e-4 in 3D), so that the random deformation below
+  // takes bonds past their onset.
+  for (const BondLaw* law : bond_laws())
+    out.push_back({std::string(law->name), std::string(law->stress_key) + ": 4.0e5, "});
+  return out;
+}
+
+Model block(const LawCase& c, int dim, int cells) {
+  const std::string side = std::to_string(cells * 1e-3);
+  std::string lo = "[0", hi = "[" + side;
+  for (int d = 1; d < dim; ++d) lo += ", 0", hi += ", " + side;
+  const std::string yaml =
+      "model: {dimension: " + std::to_string(dim) + ", formulation: " + c.formulation +
+      "}\nmaterial: {youngs_modulus: 1.0e9, density: 1000, fracture_energy: 10.0, " + c.keys +
+      "}\ndiscretization: {spacing: 0.001, horizon_factor: 3, quadrature: subcell, body: {box: "
+      "{min: " + lo +
+      "], max: " + hi + "]}}}\nsolver: {steps: 1}\n";
+  return build_model(test::deck_from(yaml));
+}
+
+std::size_t centre_node(const NodeSet& ns, double centre) {
+  std::size_t mid = 0;
+  double best = INFINITY;
+  for (std::size_t i = 0; i < ns.size(); ++i) {
+    double r = 0;
+    for (int d = 0; d < ns.dim; ++d) r += std::pow(ns.x[d][i] - centre, 2);
+    if (r < best) best = r, mid = i;
+  }
+  return mid;
+}
+
+void random_deformation(NodeSet& ns, double amplitude, unsigned seed) {
+  std::mt19937 gen(seed);
+  std::uniform_real_distribution<double> u(-amplitude, amplitude);
+  for (std::size_t i = 0; i < ns.size(); ++i) {
+    for (int d = 0; d < ns.dim; ++d) ns.u[d][i] = u(gen);
+    ns.sync_current(i);
+  }
+}
+
+class Conformance : public ::testing::TestWithParam<std::tuple<LawCase, int>> {};
+
+TEST_P(Conformance, RandomDeformationForcesSumToZero) {
+  const auto& [c, dim] = GetParam();
+  Model m = block(c, dim, dim == 3 ? 8 : 14);
+  // 4e-6 m random displacements on a 1 mm grid: stretches up to ~8e-3, past every onset and
+  // some breaking stretches; two passes so that histories and broken bonds take part.
+  random_deformation(m.nodes, 4e-6, 7);
+  internal_forces(m, true);
+  random_deformation(m.nodes, 2e-6, 8);
+  internal_forces(m, true);
+  const NodeSet& ns = m.nodes;
+  for (int d = 0; d < dim; ++d) {
+    double sum = 0, scale = 0;
+    for (std::size_t i = 0; i < ns.size(); ++i) {
+      sum += ns.f[d][i] * ns.volume[i];
+      scale += std::abs(ns.f[d][i] * ns.volume[i]);
+    }
+    ASSERT_GT(scale, 0.0);
+    EXPECT_LT(std::abs(sum) / scale, 1e-12) << c.formulation << " component " << d;
+  }
+}
+
+TEST_P(Conformance, IsotropicExpansionOfTheElasticBranchIsClassicalAndBalanced) {
+  const auto& [c, dim] = GetParam();
+  const int cells = dim == 3 ? 11 : 15;
+  Model m = block(c, dim, cells);
+  NodeSet& ns = m.nodes;
+  const double eps = 1e-5;  // below every onset
+  const double e[3][3] = {{eps, 0, 0}, {0, eps, 0}, {0, 0, eps}};
+  test::apply_homogeneous_strain(ns, e);
+  std::vector<double> W;
+  internal_forces(m, true, nullptr, &W);
+  const std::size_t mid = centre_node(ns, 0.5 * cells * 1e-3);
+  // Sub-cell partial volumes at m = 3 reach the classical value within 2% (issue 2's
+  // acceptance, tests/test_energy_density.cpp).
+  const double nu = c.formulation == "lps" ? 0.3 : bond_based_poisson(dim, PlaneCondition::Stress);
+  const double classical = dim == 3 ? 1.5 * 1e9 / (1 - 2 * nu) * eps * eps
+                                    : 1e9 / (1 - nu) * eps * eps;  // plane stress
+  EXPECT_NEAR(W[mid] / classical, 1.0, 0.02) << c.formulation;
+  // Balanced to round-off: against the size of one bond force times the family size. A stretch
+  // of 1e-5 formed from positions carries a relative round-off of about 1e-11.
+  double family_volume = 0;
+  for (std::uint64_t k = m.bonds.begin(mid); k < m.bonds.end(mid); ++k)
+    family_volume += ns.volume[m.bonds.neighbor[k]];
+  const double f_scale = m.nodes.micromodulus[mid] * eps * family_volume;
+  for (int d = 0; d < dim; ++d) EXPECT_LT(std::abs(ns.f[d][mid]), 1e-9 * f_scale);
+}
+
+TEST_P(Conformance, ThreadCountChangesNoBit) {
+  const auto& [c, dim] = GetParam();
+  auto run = [&](int threads) {
+    const int saved = omp_get_max_threads();
+    omp_set_num_threads(threads);
+    Model m = block(c, dim, dim == 3 ? 8 : 14);
+    std::vector<double> W;
+    std::size_t broken = 0;
+    for (unsigned pass = 0; pass < 3; ++pass) {
+      random_deformation(m.nodes, 3e-6 * (pass + 1), 11 + pass);
+      broken += internal_forces(m, true, nullptr, &W);
+    }
+    omp_set_num_threads(saved);
+    std::vector<double> out(W);
+    for (int d = 0; d < dim; ++d) out.insert(out.end(), m.nodes.f[d].begin(), m.nodes.f[d].end());
+    out.insert(out.end(), m.bonds.state.begin(), m.bonds.state.end());
+    out.push_back(static_cast<double>(broken));
+    return out;
+  };
+  const std::vector<double> one = run(1), two = run(2);
+  ASSERT_EQ(one.size(), two.size());
+  for (std::size_t k = 0; k < one.size(); ++k) ASSERT_EQ(one[k], two[k]) << c.formulation << " entry " << k;
+}
+
+std::string case_name(const ::testing::TestParamInfo<std::tuple<LawCase, int>>& p) {
+  return std::get<0>(p.param).formulation + "_" + std::to_string(std::get<1>(p.param)) + "d";
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryLaw, Conformance,
+                         ::testing::Combine(::testing::ValuesIn(every_law()), ::testing::Values(2, 3)),
+                         case_name);
+
+}  // namespace
