@@ -16,7 +16,7 @@ flags=(-std=c++20 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recov
 clang++ "${flags[@]}" fuzz/deck_fuzzer.cpp fuzz/surface_mesh_stub.cpp src/input/deck*.cpp \
   src/input/yaml_section.cpp src/input/point_cloud.cpp \
   src/core/expression.cpp src/setup/memory_estimate.cpp src/material/micromodulus.cpp \
-  src/material/bond_laws.cpp $(grep -l bond_law_kernel.hpp src/material/*.cpp) \
+  src/material/bond_laws.cpp src/material/formulation.cpp $(grep -l bond_law_kernel.hpp src/material/*.cpp) \
   -lyaml-cpp -lmuparser -lfmt -o "$out/deck_fuzzer"
 dict="$PWD/fuzz/deck.dict"
 seeds="$out/seeds"; rm -rf "$seeds"; mkdir -p "$seeds"

@@ -22,7 +22,7 @@ Adaptor::Adaptor(Model& m, VelocityVerlet& vv, const AdaptSpec& spec)
   vv_.keep_energies_for_checks(spec_.enabled && spec_.energy_fraction ? spec_.check_every : 0);
   // The stretch trigger reads each row's largest stretch from the force passes where they are
   // row-local (plain PMB); other forms measure it in a sweep of their own at each check.
-  m_.track_breakable_stretch = spec_.enabled && spec_.stretch_fraction && forces_are_row_local(m_);
+  m_.track_breakable_stretch = spec_.enabled && spec_.stretch_fraction && m_.formulation.row_local();
 }
 
 std::size_t Adaptor::nodes_added() const {

@@ -148,7 +148,7 @@ std::vector<std::uint32_t> rebuild_families(Model& m, const CrackMemory& mem,
   if (global) std::fill(rebuild.begin(), rebuild.end(), 1);
   apply_surface_correction(ns, bf, m.material.shape,
                            p_wave_modulus(D, m.material.plane, m.material.E, m.material.nu),
-                           m.surface_correction, m.material.lps);
+                           m.surface_correction, m.formulation.state_based());
   apply_precracks(ns, bf, m.cracks, &rebuild);
   CellGrid* fgrid = nullptr;
   std::vector<double> fx[3];
@@ -198,7 +198,7 @@ std::vector<std::uint32_t> rebuild_families(Model& m, const CrackMemory& mem,
   // Copied rows keep their marks and weights: their neighbours neither changed volume nor flags
   // (a changed node puts every row that reaches it into the window).
   mark_unbreakable_bonds(ns, bf, &rebuild);
-  if (m.dual_horizon) build_transpose(bf);
+  if (m.formulation.dual_horizon) build_transpose(bf);
   update_damage_weights(ns, bf, &rebuild);
   std::vector<std::uint32_t> rows;
   for (std::size_t i = 0; i < ns.size(); ++i)

@@ -24,23 +24,31 @@ double level_horizon(const Model& m, const AdaptSpec& spec, int level) {
   return m.horizon;
 }
 
+double brittle_critical_stretch(const Model& m, double c0, double delta) {
+  const MaterialLaw& mat = m.material;
+  return m.formulation.state_based()
+             ? lps_critical_stretch(m.nodes.dim, mat.lps_constants, delta, mat.G0)
+             : critical_stretch_from_g0(m.nodes.dim, mat.shape, c0, delta, mat.thickness, mat.G0);
+}
+
+double breaking_stretch(const Model& m, double c0, double delta) {
+  const double sb = brittle_critical_stretch(m, c0, delta);
+  // A history law's onset is a stress, the same at every horizon; its breaking stretch follows
+  // the brittle one so that a crack still dissipates G0.
+  return m.formulation.keeps_bond_history()
+             ? m.formulation.law->breaking_stretch(sb, m.material.onset_stretch)
+             : sb;
+}
+
 void scale_material_to_horizon(Model& m, std::size_t i) {
   const MaterialLaw& mat = m.material;
   NodeSet& ns = m.nodes;
   const double d = ns.horizon[i];
   ns.micromodulus[i] =
       micromodulus_c0(ns.dim, mat.plane, mat.shape, mat.bb_equivalent_E, d, mat.thickness);
-  if (mat.G0 > 0) {
-    ns.critical_stretch[i] =
-        mat.lps ? lps_critical_stretch(ns.dim, mat.lps_constants, d, mat.G0)
-                : critical_stretch_from_g0(ns.dim, mat.shape, ns.micromodulus[i], d,
-                                           mat.thickness, mat.G0);
-    // A history law's onset is a stress, the same at every horizon; its breaking stretch
-    // follows the brittle one so that a crack still dissipates G0.
-    if (mat.bond_law)
-      ns.critical_stretch[i] =
-          mat.bond_law->breaking_stretch(ns.critical_stretch[i], mat.onset_stretch);
-  } else if (std::isfinite(mat.s0))
+  if (mat.G0 > 0)
+    ns.critical_stretch[i] = breaking_stretch(m, ns.micromodulus[i], d);
+  else if (std::isfinite(mat.s0))
     // s0 given directly: keep the fracture energy it implies at the base horizon (s0 ~ delta^-1/2).
     ns.critical_stretch[i] = mat.s0 * std::sqrt(m.horizon / d);
   else

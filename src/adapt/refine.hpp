@@ -34,6 +34,12 @@ struct RefineStats {
 // Base horizon of a node of `level` (before any interface correction).
 double level_horizon(const Model& m, const AdaptSpec& spec, int level);
 
+// The G0 critical stretch of a node with micromodulus c0 and horizon delta (PMB's or LPS's
+// calibration, thesis Eq. 2.15), and the stretch at which its bonds break: that one, or the
+// history law's breaking stretch derived from it. Need material.G0 > 0.
+double brittle_critical_stretch(const Model& m, double c0, double delta);
+double breaking_stretch(const Model& m, double c0, double delta);
+
 // Sets micromodulus and critical stretch of node i from its current horizon.
 void scale_material_to_horizon(Model& m, std::size_t i);
 

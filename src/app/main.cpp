@@ -49,19 +49,20 @@ int check(const std::string& path, const std::vector<std::string>& overrides,
   const MaterialLaw& mat = m.material;
   fmt::print("deck            {}\n", path);
   fmt::print("model           {}D {}{}\n", dk.dim,
-             mat.lps ? "LPS (state-based)"
-                     : mat.bond_law ? std::string(mat.bond_law->name) + " (bond-based, PMB elastic branch)"
-                                    : std::string("PMB"),
+             m.formulation.state_based() ? "LPS (state-based)"
+             : m.formulation.keeps_bond_history()
+                 ? m.formulation.label() + " (bond-based, PMB elastic branch)"
+                 : std::string("PMB"),
              dk.dim == 2 ? (dk.plane == PlaneCondition::Stress ? ", plane stress" : ", plane strain") : "");
   if (dk.dim < 3) fmt::print("thickness/area  {:.6g}\n", dk.thickness);
   fmt::print("material        {}: E = {:.6g} Pa, rho = {:.6g} kg/m^3, nu = {:.6g}{}\n",
-             mat.name, mat.E, mat.rho, mat.nu, mat.lps ? "" : " (fixed by PMB)");
+             mat.name, mat.E, mat.rho, mat.nu, m.formulation.bond_based() ? " (fixed by PMB)" : "");
   fmt::print("micromodulus    {} shape, c0 = {:.6e}\n", to_string(mat.shape), mat.c0);
   if (mat.G0 > 0) fmt::print("fracture energy G0 = {:.6g} J/m^2\n", mat.G0);
-  if (mat.bond_law)
-    fmt::print("{}    {:.6g} Pa: onset stretch {:.6e}\n", mat.bond_law->stress_key, dk.law_stress,
+  if (m.formulation.keeps_bond_history())
+    fmt::print("{}    {:.6g} Pa: onset stretch {:.6e}\n", m.formulation.law->stress_key, dk.law_stress,
                mat.onset_stretch);
-  fmt::print("{} s0 = {:.6e}{}\n", mat.bond_law ? "breaking stretch" : "critical stretch", mat.s0,
+  fmt::print("{} s0 = {:.6e}{}\n", m.formulation.keeps_bond_history() ? "breaking stretch" : "critical stretch", mat.s0,
              dk.damage ? "" : " (damage disabled)");
   fmt::print("grid            spacing {:.6g} m, horizon {:.6g} m (m = {:.4g}), rotation {:.6g} deg, "
              "quadrature {}\n",

@@ -9,7 +9,7 @@
 
 #include "core/expression.hpp"
 #include "input/deck_sections.hpp"
-#include "material/bond_law.hpp"
+#include "material/formulation.hpp"
 #include "input/yaml_section.hpp"
 
 namespace periadapt::deck_sections {
@@ -29,10 +29,8 @@ void parse_model_and_material(Section& top, Deck& dk) {
     }
     dk.thickness = m.number("thickness", 1.0, positive());
     if (dk.dim == 3 && m.has("thickness")) m.fail("thickness", "3D models have no thickness key");
-    std::vector<std::string> formulations{"pmb", "lps"};
-    for (const BondLaw* law : bond_laws()) formulations.emplace_back(law->name);
-    dk.formulation = m.choice("formulation", formulations, "pmb");
-    if (dk.formulation == "lps" && dk.dim == 1)
+    dk.formulation = m.choice("formulation", Formulation::names(), "pmb");
+    if (dk.dim == 1 && !Formulation::named(dk.formulation)->works_in_1d())
       m.fail("formulation", "the state-based LPS model is for 2D and 3D; use pmb in 1D");
     m.finish();
   }
@@ -43,7 +41,8 @@ void parse_model_and_material(Section& top, Deck& dk) {
     dk.E = s.number("youngs_modulus", std::nullopt, positive());
     dk.rho = s.number("density", std::nullopt, positive());
     const double nu_bb = bond_based_poisson(dk.dim, dk.plane);
-    if (dk.formulation == "lps") {
+    const Formulation f = *Formulation::named(dk.formulation);
+    if (!f.bond_based()) {
       dk.nu = s.number("poisson_ratio", std::nullopt, [](double v) {
         return (v > -1.0 && v < 0.5) ? std::string()
                                      : std::string("must be in (-1, 0.5) for the LPS model");
@@ -64,7 +63,7 @@ void parse_model_and_material(Section& top, Deck& dk) {
       return std::abs(v) < 0.1 ? std::string()
                                : std::string("alpha dT is a small strain: |value| < 0.1");
     });
-    if (const BondLaw* law = find_bond_law(dk.formulation)) {
+    if (const BondLaw* law = f.law) {
       dk.law_stress = s.number(std::string(law->stress_key), std::nullopt, positive());
       if (law->needs_fracture_energy && !s.has("fracture_energy"))
         s.fail("fracture_energy", "formulation " + dk.formulation +

@@ -9,7 +9,7 @@
 
 #include "core/expression.hpp"
 #include "input/deck_sections.hpp"
-#include "material/bond_law.hpp"
+#include "material/formulation.hpp"
 #include "input/yaml_section.hpp"
 
 namespace periadapt::deck_sections {
@@ -42,7 +42,7 @@ void parse_solver(Section& top, Deck& dk) {
         return v >= 1 ? std::string() : std::string("must be >= 1");
       });
     } else if (dk.solver == Deck::SolverType::Static) {
-      if (dk.formulation == "lps")
+      if (!Formulation::named(dk.formulation)->bond_based())
         s.fail("type", "the linear static solve assembles the bond-based stiffness; for the LPS "
                        "model use type: relaxation");
       // Linearized equilibrium: no time stepping keys, no bond breaking.
@@ -64,7 +64,7 @@ void parse_solver(Section& top, Deck& dk) {
       dk.multirate_ratio = static_cast<int>(s.integer("multirate_ratio", 2, [](long v) {
         return (v >= 2 && v <= 4) ? std::string() : std::string("an integer 2, 3 or 4");
       }));
-      if (dk.multirate && dk.formulation == "lps")
+      if (dk.multirate && !Formulation::named(dk.formulation)->row_local())
         s.fail("multirate", "multi-rate stepping needs row-local forces: formulation: pmb (the LPS "
                             "dilatation couples every node to its neighbours' rows)");
       if (s.has("end_time") == s.has("steps"))
@@ -78,7 +78,7 @@ void parse_solver(Section& top, Deck& dk) {
     dk.dual_horizon =
         s.choice("bond_pairing", {"source_horizon", "dual_horizon"}, "source_horizon") ==
         "dual_horizon";
-    if (dk.dual_horizon && find_bond_law(dk.formulation))
+    if (dk.dual_horizon && !Formulation::named(dk.formulation)->has_dual_horizon_form())
       s.fail("bond_pairing", "formulation " + dk.formulation +
                                  " runs in the source-horizon form; use bond_pairing: "
                                  "source_horizon");
@@ -87,14 +87,15 @@ void parse_solver(Section& top, Deck& dk) {
                           "forces act on both ends of a bond)");
     s.finish();
   }
-  if (dk.pdro.enabled && find_bond_law(dk.formulation))
-    top.fail("damage", "the refinement overlay re-checks brittle bonds (pmb or lps); formulation " +
-                           dk.formulation + " breaks bonds by its own history");
-  if (dk.pdro.enabled && dk.dual_horizon)
-    top.fail("damage", "the refinement overlay works with bond_pairing: source_horizon (pmb or "
-                       "lps); the dual-horizon kernels do not re-check bonds");
+  const Formulation f = *Formulation::named(dk.formulation, dk.dual_horizon);
+  if (dk.pdro.enabled && !f.takes_overlay())
+    top.fail("damage", f.dual_horizon
+                           ? "the refinement overlay works with bond_pairing: source_horizon (pmb "
+                             "or lps); the dual-horizon kernels do not re-check bonds"
+                           : "the refinement overlay re-checks brittle bonds (pmb or lps); "
+                             "formulation " + dk.formulation + " breaks bonds by its own history");
   if (dk.thermal_strain != 0.0 &&
-      (dk.solver != Deck::SolverType::Explicit || dk.formulation != "pmb" || dk.dual_horizon))
+      (dk.solver != Deck::SolverType::Explicit || !f.takes_thermal_strain()))
     top.fail("material", "thermal_strain is supported by the explicit pmb solver with "
                          "bond_pairing: source_horizon only");
   if (dk.damage && !dk.G0 && !dk.s0)

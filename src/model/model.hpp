@@ -15,7 +15,7 @@
 #include "discretize/families.hpp"
 #include "discretize/precrack.hpp"
 #include "discretize/surface_correction.hpp"
-#include "material/bond_law.hpp"
+#include "material/formulation.hpp"
 #include "material/lps.hpp"
 #include "material/micromodulus.hpp"
 #include "overlay/pdro.hpp"
@@ -49,12 +49,8 @@ struct MaterialLaw {
   InfluenceShape shape = InfluenceShape::Constant;
   PlaneCondition plane = PlaneCondition::None;
   double thickness = 1.0;
-  // Ordinary state-based LPS instead of bond-based PMB (any Poisson ratio).
-  bool lps = false;
-  LpsConstants lps_constants;
-  // A history law (material/bond_law.hpp) instead of PMB: its elastic branch is PMB's.
-  const BondLaw* bond_law = nullptr;
-  double onset_stretch = INFINITY;  // where the history law leaves its elastic branch
+  LpsConstants lps_constants;  // the LPS formulation's moduli
+  double onset_stretch = INFINITY;  // where a history law leaves its elastic branch
   // Young's modulus of the bond-based material with the same P-wave modulus: its micromodulus
   // (stored per node) drives the stable time step and the relaxation masses for both models.
   double bb_equivalent_E = 0;
@@ -63,6 +59,7 @@ struct MaterialLaw {
 struct Model {
   NodeSet nodes;
   BondFamilies bonds;
+  Formulation formulation;  // which force model, and what it can do
   MaterialLaw material;
   bool damage_enabled = true;
   std::vector<BodyLoad> loads;
@@ -79,7 +76,6 @@ struct Model {
   std::vector<Shape> holes;       // ... nor inside a hole
   std::optional<Shape> body_clip; // ... nor outside a non-box body (disk)
   SurfaceCorrection surface_correction = SurfaceCorrection::None;
-  bool dual_horizon = false;  // explicit PMB in the dual-horizon form (bonds.t_* maintained)
   PdroSpec pdro;              // refinement overlay for bond failure (PMB)
   mutable LpsScratch lps_scratch;  // per-node weighted volume and dilatation (LPS)
   // With track_breakable_stretch (the stretch trigger, row-local forces): each row's largest
@@ -87,11 +83,6 @@ struct Model {
   bool track_breakable_stretch = false;
   std::vector<double> breakable_stretch;
 };
-
-// "PMB", "LPS" or the history law's name, for banners.
-inline std::string formulation_name(const MaterialLaw& mat) {
-  return mat.bond_law ? std::string(mat.bond_law->name) : mat.lps ? "LPS" : "PMB";
-}
 
 // Bytes per node for memory reports: the node arrays, the bond-row index and, with loads, the
 // solver's body-force densities.

@@ -155,7 +155,7 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
     fmt::print("PeriAdapt: {} nodes, {} bonds ({} cut by pre-cracks), {}D {}{}, c0 = {:.4e}, "
                "s0 = {:.4e}\n",
                ns.size(), m.bonds.num_bonds(), m.precrack_bonds, ns.dim,
-               formulation_name(m.material), m.dual_horizon ? " (dual horizon)" : "",
+               m.formulation.label(), m.formulation.dual_horizon ? " (dual horizon)" : "",
                m.material.c0, m.material.s0);
     fmt::print("time step {:.4e} s (stable bound {:.4e} s), {} steps, {} threads{}\n", ts.dt,
                ts.dt_crit, ts.steps, omp_get_max_threads(),
@@ -497,8 +497,8 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
                    {"c0", m.material.c0},         {"s0", m.material.s0},
                    {"micromodulus", to_string(m.material.shape)},
                    {"wave_speed_m_s", m.material.wave_speed}};
-  if (m.material.bond_law) {
-    j["material"]["formulation"] = std::string(m.material.bond_law->name);
+  if (m.formulation.keeps_bond_history()) {
+    j["material"]["formulation"] = m.formulation.name();
     j["material"]["onset_stretch"] = m.material.onset_stretch;
   }
   j["grid"] = {{"spacing", m.grid_spacing}, {"horizon", m.horizon}};

@@ -41,7 +41,7 @@ std::vector<PointField> snapshot_fields(const Model& m, const std::vector<double
       for (int b = 0; b < 3; ++b) eps.data[9 * i + 3 * a + b] = 0.5 * (G[a][b] + G[b][a]);
   }
   f.push_back(std::move(eps));
-  if (m.material.lps) f.push_back({"dilatation", 1, m.lps_scratch.theta});
+  if (m.formulation.state_based()) f.push_back({"dilatation", 1, m.lps_scratch.theta});
   return f;
 }
 

@@ -42,7 +42,7 @@ void refuse_beyond_elastic_branch(const Deck& dk, const Model& m) {
                     fmt::format("the linear static solve is the elastic branch of formulation {}, "
                                 "but a bond of node {} at ({:.4g}, {:.4g}, {:.4g}) reaches stretch "
                                 "{:.4g}, past the onset {:.4g}; use type: relaxation",
-                                m.material.bond_law->name, at, ns.x[0][at], ns.x[1][at],
+                                m.formulation.name(), at, ns.x[0][at], ns.x[1][at],
                                 ns.x[2][at], smax, m.material.onset_stretch));
 }
 
@@ -67,7 +67,7 @@ RunResult run_static(const Deck& dk, const RunOptions& opt) {
   } catch (const std::invalid_argument& e) {
     throw DeckError(dk.file, 0, 0, "boundary_conditions", e.what());
   }
-  if (m.material.bond_law) refuse_beyond_elastic_branch(dk, m);
+  if (m.formulation.keeps_bond_history()) refuse_beyond_elastic_branch(dk, m);
   const double rel = sr.load_norm > 0 ? sr.residual_norm / sr.load_norm : sr.residual_norm;
   if (!opt.quiet)
     fmt::print("static solve: {} unknowns, {} nonzeros, {} ({} iterations), residual {:.3e} "

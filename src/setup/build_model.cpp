@@ -49,32 +49,29 @@ Model build_model(const Deck& dk) {
   mat.plane = dk.plane;
   mat.thickness = dk.thickness;
   mat.bb_equivalent_E = dk.E;
-  if (dk.formulation == "lps") {
-    mat.lps = true;
+  m.formulation = *Formulation::named(dk.formulation, dk.dual_horizon &&
+                                                         dk.solver != Deck::SolverType::Static);
+  if (m.formulation.state_based()) {
     mat.nu = *dk.nu;
     mat.lps_constants = lps_constants(dk.dim, dk.plane, dk.E, mat.nu);
     mat.bb_equivalent_E = p_wave_modulus(dk.dim, dk.plane, dk.E, mat.nu) /
                           p_wave_modulus(dk.dim, dk.plane, 1.0, bond_based_poisson(dk.dim, dk.plane));
   }
   mat.c0 = micromodulus_c0(dk.dim, dk.plane, dk.shape, mat.bb_equivalent_E, dk.horizon, dk.thickness);
-  if ((mat.bond_law = find_bond_law(dk.formulation)))
+  if (m.formulation.keeps_bond_history())
     mat.onset_stretch = dk.law_stress / all_round_modulus(dk.dim, dk.plane, dk.E);
   if (dk.G0) {
     mat.G0 = *dk.G0;
-    mat.s0 = mat.lps ? lps_critical_stretch(dk.dim, mat.lps_constants, dk.horizon, *dk.G0)
-                     : critical_stretch_from_g0(dk.dim, dk.shape, mat.c0, dk.horizon,
-                                                dk.thickness, *dk.G0);
-    if (mat.bond_law) {
-      // Past the brittle critical stretch the law could not dissipate G0 (it would yield or
-      // soften after a brittle bond had already broken).
-      if (!(mat.onset_stretch < mat.s0))
-        throw DeckError(dk.file, 0, 0, "material." + std::string(mat.bond_law->stress_key),
-                        fmt::format("{} Pa is a bond stretch of {:.4g}, at or above {:.4g}, where "
-                                    "a brittle bond breaks with this fracture_energy and horizon; "
-                                    "give a smaller stress or a larger fracture_energy",
-                                    dk.law_stress, mat.onset_stretch, mat.s0));
-      mat.s0 = mat.bond_law->breaking_stretch(mat.s0, mat.onset_stretch);
-    }
+    const double sb = brittle_critical_stretch(m, mat.c0, dk.horizon);
+    // Past the brittle critical stretch a history law could not dissipate G0 (it would yield or
+    // soften after a brittle bond had already broken).
+    if (m.formulation.keeps_bond_history() && !(mat.onset_stretch < sb))
+      throw DeckError(dk.file, 0, 0, "material." + std::string(m.formulation.law->stress_key),
+                      fmt::format("{} Pa is a bond stretch of {:.4g}, at or above {:.4g}, where "
+                                  "a brittle bond breaks with this fracture_energy and horizon; "
+                                  "give a smaller stress or a larger fracture_energy",
+                                  dk.law_stress, mat.onset_stretch, sb));
+    mat.s0 = breaking_stretch(m, mat.c0, dk.horizon);
   } else if (dk.s0) {
     mat.s0 = *dk.s0;
   } else {
@@ -101,12 +98,12 @@ Model build_model(const Deck& dk) {
   // An adaptive run appends refined rows: spare capacity now saves its first event a copy of
   // every bond.
   m.bonds = build_families(ns, qs, dk.adapt.enabled ? kRefinementBondHeadroom : 0.0);
-  if (mat.bond_law) m.bonds.enable_state();
+  if (m.formulation.keeps_bond_history()) m.bonds.enable_state();
   m.family_build_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   m.surface_correction = dk.surface_correction;
   apply_surface_correction(ns, m.bonds, dk.shape, p_wave_modulus(dk.dim, dk.plane, dk.E, mat.nu),
-                           m.surface_correction, mat.lps);
+                           m.surface_correction, m.formulation.state_based());
   m.precrack_bonds = apply_precracks(ns, m.bonds, dk.cracks);
   update_damage_weights(ns, m.bonds);
   m.quadrature = qs;
@@ -121,8 +118,7 @@ Model build_model(const Deck& dk) {
   for (std::size_t r = 0; r < dk.no_fail.size(); ++r)
     for (std::uint32_t i : select(ns, dk.no_fail[r], tol)) ns.flags[i] |= kNoFail;
   mark_unbreakable_bonds(ns, m.bonds);
-  m.dual_horizon = dk.dual_horizon && dk.solver != Deck::SolverType::Static;
-  if (m.dual_horizon) build_transpose(m.bonds);
+  if (m.formulation.dual_horizon) build_transpose(m.bonds);
 
   for (std::size_t r = 0; r < dk.output.regions.size(); ++r)
     if (select(ns, dk.output.regions[r].region, tol).empty())

@@ -1,6 +1,6 @@
 #include "setup/memory_estimate.hpp"
 
-#include "material/bond_law.hpp"
+#include "material/formulation.hpp"
 
 #include <fmt/core.h>
 
@@ -87,9 +87,9 @@ MemoryEstimate estimate_memory(const Deck& dk) {
   const double per_node = D == 1 ? 2 * r : D == 2 ? M_PI * r * r : 4.0 / 3.0 * M_PI * r * r * r;
   e.bonds = e.nodes * per_node;
   const double spare = dk.adapt.enabled ? 1.25 : 1.0;
-  // History laws keep one double per bond.
-  const double per_bond = BondFamilies::bytes_per_bond() + (dk.dual_horizon ? 20 : 0) +
-                          (find_bond_law(dk.formulation) ? 8 : 0);
+  const auto f = Formulation::named(dk.formulation, dk.dual_horizon);
+  const double per_bond =
+      BondFamilies::bytes_per_bond() + static_cast<double>(f ? f->extra_bytes_per_bond() : 0);
   e.bytes = e.nodes * (NodeSet::bytes_per_node() + 16 + 24) + e.bonds * per_bond * spare;
   e.available = available_memory();
   return e;

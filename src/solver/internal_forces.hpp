@@ -1,6 +1,7 @@
 #pragma once
-// The model's internal force density, energy density and stiffness sum, whichever constitutive
-// model the deck chose (bond-based PMB or state-based LPS). Solvers call these, never a kernel.
+// The model's internal force density, energy density and stress, whichever force model the deck
+// chose (m.formulation): the one dispatch point to the kernels. Solvers call these, never a
+// kernel.
 #include <cstdint>
 #include <vector>
 
@@ -13,10 +14,8 @@ std::size_t internal_forces(Model& m, bool allow_breaking,
                             std::vector<std::uint64_t>* broken_log = nullptr,
                             std::vector<double>* W = nullptr);
 
-// Whether a node's force depends on its own bond row only (plain bond-based PMB): then the forces
-// of a set of rows can be computed alone (internal_forces_rows).
-bool forces_are_row_local(const Model& m);
-// The forces of the nodes `rows` only (forces_are_row_local(m) must hold); the others keep theirs.
+// The forces of the nodes `rows` only (m.formulation.row_local() must hold); the others keep
+// theirs.
 // With W, the rows' energy densities are updated too (W must hold the others').
 std::size_t internal_forces_rows(Model& m, bool allow_breaking, const std::vector<std::uint32_t>& rows,
                                  std::vector<std::uint64_t>* broken_log = nullptr,

@@ -197,7 +197,7 @@ void VelocityVerlet::request_energy_at(long step) {
 }
 
 void VelocityVerlet::set_multirate(double safety, int max_ratio) {
-  if (!forces_are_row_local(m_))
+  if (!m_.formulation.row_local())
     throw std::invalid_argument(
         "multi-rate stepping needs forces that depend on a node's own bond row (bond-based PMB "
         "with source-horizon pairing)");
@@ -348,7 +348,7 @@ void VelocityVerlet::compute_accelerations(const std::vector<std::uint32_t>* row
   // (below). Its energy field is complete only if the other rows' densities belong to this very
   // state (computed by this step's pass); else the observers make their own.
   // A subcycle pass covers every node with a prescribed motion (they are never slow).
-  const bool partial = rows && forces_are_row_local(m_);
+  const bool partial = rows && m_.formulation.row_local();
   // A subcycle step: the idle rows' densities at this (drifted) state come from their own pass.
   const bool energy_kept = partial && want_energy && (subcycle || energy_step_ == step_);
   if (subcycle && want_energy) {

@@ -1,0 +1,49 @@
+#pragma once
+// The force model of a run: PMB or LPS, each in the source- or dual-horizon pairing, or a
+// registered history law (material/bond_laws.cpp). One value replaces flags spread over the
+// layers: the deck asks it what a model can do, the solvers and the adaptor ask how its forces
+// behave, and solver/internal_forces.cpp dispatches on it to the kernels.
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "material/bond_law.hpp"
+
+namespace periadapt {
+
+struct Formulation {
+  enum class Kind { Pmb, Lps, HistoryLaw };
+  Kind kind = Kind::Pmb;
+  bool dual_horizon = false;     // bonds act on both ends with each owner's constants
+  const BondLaw* law = nullptr;  // HistoryLaw only
+
+  // From the deck's model.formulation and solver.bond_pairing; nullopt for an unknown name.
+  static std::optional<Formulation> named(std::string_view name, bool dual_horizon = false);
+  // Every model.formulation value: pmb, lps and the registered history laws.
+  static std::vector<std::string> names();
+
+  std::string name() const;   // model.formulation
+  std::string label() const;  // banners: PMB, LPS or the law's name
+
+  bool state_based() const { return kind == Kind::Lps; }
+  bool keeps_bond_history() const { return kind == Kind::HistoryLaw; }
+  // Capabilities.
+  // A node's force depends on its own bond row only: multi-rate stepping, refreshes of some
+  // rows, and the stretch trigger measured by the force pass.
+  bool row_local() const { return kind != Kind::Lps && !dual_horizon; }
+  // The bond-based stiffness (static solve) and the bond-based Poisson ratio apply.
+  bool bond_based() const { return kind != Kind::Lps; }
+  // Has a dual-horizon form; can be re-checked by the refinement overlay; takes a thermal strain.
+  bool has_dual_horizon_form() const { return kind != Kind::HistoryLaw; }
+  bool takes_overlay() const { return kind != Kind::HistoryLaw && !dual_horizon; }
+  bool takes_thermal_strain() const { return kind == Kind::Pmb && !dual_horizon; }
+  bool works_in_1d() const { return kind != Kind::Lps; }
+  // Bytes per bond beyond BondFamilies::bytes_per_bond() (transpose, history).
+  std::size_t extra_bytes_per_bond() const {
+    return (dual_horizon ? 20 : 0) + (keeps_bond_history() ? 8 : 0);
+  }
+};
+
+}  // namespace periadapt
