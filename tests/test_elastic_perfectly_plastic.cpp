@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "adapt/refine.hpp"
+#include "adapt/triggers.hpp"
 #include "setup/build_model.hpp"
 #include "solver/internal_forces.hpp"
 #include "solver/velocity_verlet.hpp"
@@ -32,19 +33,7 @@ Model bar(const std::string& extra = "") {
       "solver: {steps: 1}\n" + extra));
 }
 
-// Homogeneous stretch s of the whole bar; returns the tension carried across its middle.
-double tension(Model& m, double s) {
-  NodeSet& ns = m.nodes;
-  for (std::size_t i = 0; i < ns.size(); ++i) {
-    ns.u[0][i] = s * ns.x[0][i];
-    ns.sync_current(i);
-  }
-  internal_forces(m, true);
-  double right = 0;  // net internal force on the right half: the left half pulls it back
-  for (std::size_t i = 0; i < ns.size(); ++i)
-    if (ns.x[0][i] > 0.02) right += ns.f[0][i] * ns.volume[i];
-  return -right;
-}
+double tension(Model& m, double s) { return test::bar_tension(m, s, 0.04); }
 
 }  // namespace
 
@@ -108,13 +97,18 @@ TEST(ElasticPerfectlyPlastic, StoredEnergyAfterYieldIsTheElasticPart) {
   for (std::size_t i = 0; i < W.size(); ++i) ASSERT_NEAR(W[i] / We[i], 1.0, 1e-9);
 }
 
-TEST(ElasticPerfectlyPlastic, RefinementKeepsTheHistoriesOfSurvivingBonds) {
+// Without a surface correction an event patches the rows around it (their bonds keep their
+// histories in place); with one, every row is searched again and the histories come back by pair.
+class Refinement : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(Refinement, KeepsTheHistoriesOfSurvivingBonds) {
   Model m = build_model(test::deck_from(
       "model: {dimension: 2, formulation: elastic_perfectly_plastic}\n"
       "material: {youngs_modulus: 1.0e9, density: 1000, fracture_energy: 50.0, "
       "yield_stress: 1.0e6}\n"
-      "discretization: {spacing: 0.001, horizon_factor: 3, body: {box: {min: [0, 0], max: [0.02, "
-      "0.02]}}}\nsolver: {steps: 1}\n"));
+      "discretization: {spacing: 0.001, horizon_factor: 3, surface_correction: " +
+      std::string(GetParam()) +
+      ", body: {box: {min: [0, 0], max: [0.02, 0.02]}}}\nsolver: {steps: 1}\n"));
   NodeSet& ns = m.nodes;
   // A shear past yield everywhere: u = 3e-3 y.
   for (std::size_t i = 0; i < ns.size(); ++i) {
@@ -155,6 +149,8 @@ TEST(ElasticPerfectlyPlastic, RefinementKeepsTheHistoriesOfSurvivingBonds) {
   EXPECT_GT(fresh, 100u);
 }
 
+INSTANTIATE_TEST_SUITE_P(ElasticPerfectlyPlastic, Refinement, ::testing::Values("false", "energy"));
+
 TEST(ElasticPerfectlyPlastic, AnUndoneStepRestoresTheHistories) {
   // Stretched past yield at the start, and stretching on: every step moves plastic stretches.
   Model m = bar("initial_conditions: {displacement: [\"2.5e-3 * x\"], velocity: [\"20 * (x - 0.02)\"]}\n");
@@ -170,4 +166,57 @@ TEST(ElasticPerfectlyPlastic, AnUndoneStepRestoresTheHistories) {
   vv.undo_last_step();
   EXPECT_EQ(m.bonds.state, kept);
   EXPECT_GT(plastic, 0u);
+}
+
+TEST(ElasticPerfectlyPlastic, HydrostaticStressPlateausAtTheYieldStress) {
+  // The yield stress is the stress of an equal all-round stretch: under an isotropic expansion
+  // past the onset, an interior node's stress (material/bond_law_kernel.hpp, 1/2 f (x) xi) stays
+  // at sigma_Y in every direction. Sub-cell quadrature at m = 3 reaches the classical stress
+  // within 2% (tests/test_law_conformance.cpp).
+  for (int dim : {2, 3}) {
+    const int cells = dim == 3 ? 11 : 15;
+    const std::string side = std::to_string(cells * 1e-3);
+    std::string lo = "[0", hi = "[" + side;
+    for (int d = 1; d < dim; ++d) lo += ", 0", hi += ", " + side;
+    Model m = build_model(test::deck_from(
+        "model: {dimension: " + std::to_string(dim) + ", formulation: elastic_perfectly_plastic}\n"
+        "material: {youngs_modulus: 1.0e9, density: 1000, yield_stress: 1.0e6}\n"
+        "discretization: {spacing: 0.001, horizon_factor: 3, quadrature: subcell, body: {box: "
+        "{min: " + lo + "], max: " + hi + "]}}}\ndamage: {enabled: false}\nsolver: {steps: 1}\n"));
+    NodeSet& ns = m.nodes;
+    const double sy = m.material.onset_stretch;
+    std::size_t mid = 0;
+    double best = INFINITY;
+    for (std::size_t i = 0; i < ns.size(); ++i) {
+      double r = 0;
+      for (int d = 0; d < dim; ++d) r += std::pow(ns.x[d][i] - 0.5 * cells * 1e-3, 2);
+      if (r < best) best = r, mid = i;
+    }
+    for (double f : {0.5, 1.5, 3.0}) {
+      const double e = f * sy;
+      const double eps[3][3] = {{e, 0, 0}, {0, e, 0}, {0, 0, e}};
+      test::apply_homogeneous_strain(ns, eps);
+      internal_forces(m, false);
+      std::vector<double> sigma;
+      stress_density(m, sigma);
+      const double expected = 1.0e6 * std::min(f, 1.0);
+      for (int d = 0; d < dim; ++d)
+        EXPECT_NEAR(sigma[9 * mid + 4 * d] / expected, 1.0, 0.02) << dim << "D, " << f << " s_Y";
+    }
+  }
+}
+
+TEST(ElasticPerfectlyPlastic, StretchTriggerRefinesBeforeBondsYield) {
+  // Children start with fresh histories, so the stretch trigger fires at a fraction of the
+  // onset stretch, well below the breaking stretch.
+  Model m = bar();
+  const double sy = m.material.onset_stretch;
+  ASSERT_GT(0.5 * m.material.s0, 0.7 * sy);
+  AdaptSpec spec;
+  spec.enabled = true;
+  const std::vector<char> refinable(m.nodes.size(), 1);
+  tension(m, 0.45 * sy);
+  EXPECT_TRUE(stretch_trigger(m, spec, 0.5, refinable).empty());
+  tension(m, 0.55 * sy);
+  EXPECT_EQ(stretch_trigger(m, spec, 0.5, refinable).size(), m.nodes.size());
 }

@@ -10,6 +10,7 @@
 #include "run/simulation.hpp"
 #include "input/deck.hpp"
 #include "setup/build_model.hpp"
+#include "solver/internal_forces.hpp"
 #include "solver/velocity_verlet.hpp"
 
 namespace periadapt::test {
@@ -26,6 +27,22 @@ inline void apply_homogeneous_strain(NodeSet& ns, const double eps[3][3]) {
     }
     ns.sync_current(i);
   }
+}
+
+// A 1D bar (nodes on x in [0, length]) stretched homogeneously by s: forces from one pass (bonds
+// break where the law says), and the tension carried across its middle (the net internal force
+// the left half exerts on the right half, negated).
+inline double bar_tension(Model& m, double s, double length) {
+  NodeSet& ns = m.nodes;
+  for (std::size_t i = 0; i < ns.size(); ++i) {
+    ns.u[0][i] = s * ns.x[0][i];
+    ns.sync_current(i);
+  }
+  internal_forces(m, true);
+  double right = 0;
+  for (std::size_t i = 0; i < ns.size(); ++i)
+    if (ns.x[0][i] > 0.5 * length) right += ns.f[0][i] * ns.volume[i];
+  return -right;
 }
 
 // A minimal valid 2D deck; `extra` is appended (later keys of the same section are not merged,

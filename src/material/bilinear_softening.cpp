@@ -10,6 +10,15 @@ namespace periadapt {
 namespace {
 
 struct BilinearSoftening {
+  static constexpr std::string_view name = "bilinear_softening";
+  static constexpr std::string_view description =
+      "bond-based, each bond softening linearly from its peak (largest stretch per bond)";
+  static constexpr std::string_view stress_key = "peak_stress";
+  static constexpr std::string_view stress_meaning =
+      "stress of an equal all-round stretch at which bonds start to soften (Pa)";
+  static constexpr bool needs_fracture_energy = true;
+  static double breaking_stretch(double sb, double sp) { return sb * sb / sp; }
+
   static double update(double s, double k, double, double) { return s > k ? s : k; }
   static double force(double s, double k, double sp, double sf) {
     if (s <= 0.0 || k <= sp) return s;
@@ -22,21 +31,8 @@ struct BilinearSoftening {
   static bool failed(double, double k, double sf) { return k >= sf; }
 };
 
-using Kernels = BondLawKernels<BilinearSoftening>;
-
 }  // namespace
 
-extern const BondLaw kBilinearSoftening{
-    .name = "bilinear_softening",
-    .description = "bond-based, each bond softening linearly from its peak (largest stretch per bond)",
-    .stress_key = "peak_stress",
-    .stress_meaning = "stress of an equal all-round stretch at which bonds start to soften (Pa)",
-    .needs_fracture_energy = true,
-    .breaking_stretch = [](double sb, double sp) { return sb * sb / sp; },
-    .forces = &Kernels::forces,
-    .energy_density = &Kernels::energy_density,
-    .stress = &Kernels::stress,
-    .initial_state = 0.0,
-};
+extern constinit const BondLaw kBilinearSoftening = make_bond_law<BilinearSoftening>();
 
 }  // namespace periadapt

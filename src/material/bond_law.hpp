@@ -47,8 +47,7 @@ struct BondLaw {
   // sigma_i = 1/2 sum_j c g F beta V e (x) xi, F the law's force factor (row-major 3 x 3).
   void (*stress)(const NodeSet&, const BondFamilies&, const BondLawCall&,
                  std::vector<double>&) = nullptr;
-  // Bond history value of a new bond (children's bonds, rebuilt rows).
-  double initial_state = 0;
+  // A new bond (children's bonds, rows searched again without a survivor) starts at history 0.
 };
 
 // Every registered law (material/bond_laws.cpp), and one by name (nullptr if none).

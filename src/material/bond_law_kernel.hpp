@@ -167,4 +167,15 @@ struct BondLawKernels {
   }
 };
 
+// The registry entry of law L (constant-initialized: test tables read it before main), from its
+// static members name, description, stress_key, stress_meaning, needs_fracture_energy and
+// breaking_stretch(sb, onset).
+template <class L>
+constexpr BondLaw make_bond_law() {
+  return BondLaw{L::name,          L::description,           L::stress_key,
+                 L::stress_meaning, L::needs_fracture_energy, &L::breaking_stretch,
+                 &BondLawKernels<L>::forces, &BondLawKernels<L>::energy_density,
+                 &BondLawKernels<L>::stress};
+}
+
 }  // namespace periadapt

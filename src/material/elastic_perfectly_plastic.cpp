@@ -10,6 +10,15 @@ namespace periadapt {
 namespace {
 
 struct ElasticPerfectlyPlastic {
+  static constexpr std::string_view name = "elastic_perfectly_plastic";
+  static constexpr std::string_view description =
+      "bond-based, each bond elastic-perfectly plastic (plastic stretch per bond)";
+  static constexpr std::string_view stress_key = "yield_stress";
+  static constexpr std::string_view stress_meaning =
+      "stress of an equal all-round stretch at which bonds yield (Pa)";
+  static constexpr bool needs_fracture_energy = false;
+  static double breaking_stretch(double sb, double sy) { return sb * sb / (2.0 * sy) + 0.5 * sy; }
+
   static double update(double s, double sp, double sy, double) {
     if (s >= sp + sy) return s - sy;
     if (s <= sp - sy) return s + sy;
@@ -21,21 +30,8 @@ struct ElasticPerfectlyPlastic {
   static bool failed(double s, double, double s0) { return s > s0; }
 };
 
-using Kernels = BondLawKernels<ElasticPerfectlyPlastic>;
-
 }  // namespace
 
-extern const BondLaw kElasticPerfectlyPlastic{
-    .name = "elastic_perfectly_plastic",
-    .description = "bond-based, each bond elastic-perfectly plastic (plastic stretch per bond)",
-    .stress_key = "yield_stress",
-    .stress_meaning = "stress of an equal all-round stretch at which bonds yield (Pa)",
-    .needs_fracture_energy = false,
-    .breaking_stretch = [](double sb, double sy) { return sb * sb / (2.0 * sy) + 0.5 * sy; },
-    .forces = &Kernels::forces,
-    .energy_density = &Kernels::energy_density,
-    .stress = &Kernels::stress,
-    .initial_state = 0.0,
-};
+extern constinit const BondLaw kElasticPerfectlyPlastic = make_bond_law<ElasticPerfectlyPlastic>();
 
 }  // namespace periadapt
