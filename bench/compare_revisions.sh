@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# Throughput of this tree against an earlier revision on the same deck, in alternating runs (the
+# machine is noisy): builds REV in a scratch folder, then runs REV's and this tree's binaries one
+# after the other, REPEATS times each, and prints the bond evaluations per second of the time
+# stepping (summary.json's bond_evals_per_s) with the ratio of the medians.
+#   bash bench/compare_revisions.sh REV [DECK] [REPEATS]
+# DECK defaults to bench/pmb_block_3d.yaml (the LAMMPS comparison's 3D PMB block, 216,000
+# nodes, 200 steps); REPEATS to 5. Both binaries use the threads OMP_NUM_THREADS gives.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+rev=${1:?usage: bench/compare_revisions.sh REV [DECK] [REPEATS]}
+deck=${2:-bench/pmb_block_3d.yaml}
+repeats=${3:-5}
+[[ -x build/periadapt ]] || bash scripts/build.sh
+work=${TMPDIR:-/tmp}/periadapt-rev-$(git rev-parse --short "$rev")
+if [[ ! -x $work/build/periadapt ]]; then
+  rm -rf "$work/src"; mkdir -p "$work/src"
+  git archive "$rev" | tar -xf - -C "$work/src"
+  cmake -S "$work/src" -B "$work/build" -DCMAKE_BUILD_TYPE=Release -DPERIADAPT_BUILD_TESTS=OFF \
+    -DPERIADAPT_BUILD_BENCH=OFF > /dev/null
+  cmake --build "$work/build" -j"$(nproc)" > "$work/build.log" 2>&1 || { tail -20 "$work/build.log"; exit 1; }
+fi
+out=$(mktemp -d); trap 'rm -rf "$out"' EXIT
+rate() {  # binary -> bond evaluations per second
+  "$1" run "$deck" --quiet --set "output.directory=$out/run" > /dev/null
+  python3 -c "import json; print(json.load(open('$out/run/summary.json'))['bond_evals_per_s'])"
+}
+old=(); new=()
+for ((k = 0; k < repeats; ++k)); do
+  old+=("$(rate "$work/build/periadapt")")
+  new+=("$(rate build/periadapt)")
+done
+python3 - "$rev" "${old[*]}" "${new[*]}" <<'PY'
+import statistics, sys
+rev, old, new = sys.argv[1], [float(x) for x in sys.argv[2].split()], [float(x) for x in sys.argv[3].split()]
+mo, mn = statistics.median(old), statistics.median(new)
+print(f"{rev}: " + " ".join(f"{x:.3e}" for x in old) + f"  median {mo:.4e} bond evaluations/s")
+print(f"this tree: " + " ".join(f"{x:.3e}" for x in new) + f"  median {mn:.4e}")
+print(f"ratio this tree / {rev} (medians): {mn / mo:.4f}; best of each: {max(new) / max(old):.4f}")
+PY
