@@ -227,8 +227,6 @@ TEST(DeckErrors, EveryLoaderCheckRefusesItsCaseNamingTheKey) {
       {{"model.formulation=elastic_perfectly_plastic", "material.yield_stress=1e6",
         "material.fracture_energy=null", "material.critical_stretch=1e-3"},
        "material.critical_stretch", "derives its breaking stretch"},
-      {{"model.formulation=elastic_perfectly_plastic", "material.yield_stress=1e6",
-        "solver.bond_pairing=dual_horizon"}, "solver.bond_pairing", "source-horizon form"},
       {{"model.formulation=bilinear_softening", "material.peak_stress=1e6", "damage.overlay.n=2"},
        "damage", "its own history"},
       {{"discretization.spacing=0"}, "discretization.spacing", ""},

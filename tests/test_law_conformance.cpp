@@ -25,6 +25,7 @@ namespace {
 struct LawCase {
   std::string formulation;
   std::string keys;  // extra material keys
+  std::string pairing = "source_horizon";
 };
 
 std::vector<LawCase> every_law() {
@@ -34,6 +35,12 @@ std::vector<LawCase> every_law() {
   // takes bonds past their onset.
   for (const BondLaw* law : bond_laws())
     out.push_back({std::string(law->name), std::string(law->stress_key) + ": 4.0e5, "});
+  // Every one also in the dual-horizon form.
+  const std::size_t n = out.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    out.push_back(out[k]);
+    out.back().pairing = "dual_horizon";
+  }
   return out;
 }
 
@@ -46,7 +53,7 @@ Model block(const LawCase& c, int dim, int cells) {
       "}\nmaterial: {youngs_modulus: 1.0e9, density: 1000, fracture_energy: 10.0, " + c.keys +
       "}\ndiscretization: {spacing: 0.001, horizon_factor: 3, quadrature: subcell, body: {box: "
       "{min: " + lo +
-      "], max: " + hi + "]}}}\nsolver: {steps: 1}\n";
+      "], max: " + hi + "]}}}\nsolver: {steps: 1, bond_pairing: " + c.pairing + "}\n";
   return build_model(test::deck_from(yaml));
 }
 
@@ -144,7 +151,9 @@ TEST_P(Conformance, ThreadCountChangesNoBit) {
 }
 
 std::string case_name(const ::testing::TestParamInfo<std::tuple<LawCase, int>>& p) {
-  return std::get<0>(p.param).formulation + "_" + std::to_string(std::get<1>(p.param)) + "d";
+  const LawCase& c = std::get<0>(p.param);
+  return c.formulation + (c.pairing == "dual_horizon" ? "_dual_" : "_") +
+         std::to_string(std::get<1>(p.param)) + "d";
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryLaw, Conformance,

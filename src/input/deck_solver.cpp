@@ -78,10 +78,6 @@ void parse_solver(Section& top, Deck& dk) {
     dk.dual_horizon =
         s.choice("bond_pairing", {"source_horizon", "dual_horizon"}, "source_horizon") ==
         "dual_horizon";
-    if (dk.dual_horizon && !Formulation::named(dk.formulation)->has_dual_horizon_form())
-      s.fail("bond_pairing", "formulation " + dk.formulation +
-                                 " runs in the source-horizon form; use bond_pairing: "
-                                 "source_horizon");
     if (dk.multirate && dk.dual_horizon)
       s.fail("multirate", "multi-rate stepping needs bond_pairing: source_horizon (dual-horizon "
                           "forces act on both ends of a bond)");

@@ -41,6 +41,8 @@ struct BondLaw {
   // Forces (and, when asked, energy densities and the trigger's stretch) of the rows; updates
   // each bond's history (bonds.state) and breaks bonds past their breaking stretch.
   std::size_t (*forces)(NodeSet&, BondFamilies&, const BondLawCall&) = nullptr;
+  // The same in the dual-horizon form (bonds.t_* built; call.rows must be null).
+  std::size_t (*dual_forces)(NodeSet&, BondFamilies&, const BondLawCall&) = nullptr;
   // Stored (recoverable) energy density of every node from the current state.
   void (*energy_density)(const NodeSet&, const BondFamilies&, const BondLawCall&,
                          std::vector<double>&) = nullptr;

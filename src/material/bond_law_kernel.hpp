@@ -92,6 +92,88 @@ struct BondLawKernels {
     }
   };
 
+  // The dual-horizon form: each membership (a bond of i's family) pulls both ends with half of
+  // its owner's force, so every pair force is equal and opposite whatever the two horizons.
+  // First pass: each owner updates its memberships' histories and keeps q = c/2 g F beta / r
+  // per membership (bonds.dual_force); second pass: each node gathers the memberships that
+  // point at it (bonds.t_*). Bonds broken in the pass carry no force and break afterwards, in
+  // a fixed order.
+  template <int D, InfluenceShape S>
+  struct DualForces {
+    static std::size_t run(NodeSet& ns, BondFamilies& bf, const BondLawCall& c) {
+      const std::size_t n = ns.size();
+      if (bf.dual_force.size() != bf.neighbor.size()) bf.dual_force.assign(bf.neighbor.size(), 0.0);
+      double* fac = bf.dual_force.data();
+      double* W = nullptr;
+      if (c.W) {
+        c.W->assign(n, 0.0);
+        W = c.W->data();
+      }
+      const double a = c.onset_stretch;
+      std::vector<std::pair<std::uint64_t, std::uint32_t>> newly;
+#pragma omp parallel
+      {
+        std::vector<std::pair<std::uint64_t, std::uint32_t>> mine;
+#pragma omp for schedule(dynamic, 512)
+        for (std::size_t i = 0; i < n; ++i) {
+          for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) fac[k] = 0.0;
+          if (!(ns.flags[i] & kActive)) continue;
+          const bool node_breaks = !(ns.flags[i] & kNoFail);
+          const double b = ns.critical_stretch[i], half_c = 0.5 * ns.micromodulus[i];
+          double f0 = 0, f1 = 0, f2 = 0, w = 0;
+          for_intact<D, S>(ns, bf, i, [&](std::uint64_t k, std::size_t j, double d0, double d1,
+                                          double d2, double r, double s, double gw, double len) {
+            double F = s, phi = s * s;
+            if (node_breaks && bf.inv_length[k] > 0.0) {
+              const double h = L::update(s, bf.state[k], a, b);
+              bf.state[k] = h;
+              if (c.allow_breaking && L::failed(s, h, b)) {
+                mine.emplace_back(k, static_cast<std::uint32_t>(i));
+                return;
+              }
+              F = L::force(s, h, a, b);
+              phi = L::energy(s, h, a, b);
+            }
+            // gw = g beta V_j: the factor per unit neighbour volume is gw / V_j.
+            const double q = half_c * gw / ns.cur[4 * j + 3] * F / r;
+            fac[k] = q;
+            const double fr = q * ns.cur[4 * j + 3];
+            f0 += fr * d0;
+            f1 += fr * d1;
+            f2 += fr * d2;
+            w += gw * phi * len;
+          });
+          ns.f[0][i] = f0;
+          if constexpr (D > 1) ns.f[1][i] = f1;
+          if constexpr (D > 2) ns.f[2][i] = f2;
+          if (W) W[i] = 0.25 * ns.micromodulus[i] * w;
+        }
+#pragma omp for schedule(dynamic, 512)
+        for (std::size_t i = 0; i < n; ++i) {
+          if (!(ns.flags[i] & kActive)) continue;
+          double acc[3] = {ns.f[0][i], ns.f[1][i], ns.f[2][i]};
+          for (std::uint64_t t = bf.t_offsets[i]; t < bf.t_offsets[i + 1]; ++t) {
+            const double qk = fac[bf.t_bond[t]];
+            if (qk == 0.0) continue;
+            const std::size_t o = bf.t_owner[t];
+            const double fr = qk * ns.cur[4 * o + 3];
+            for (int e = 0; e < D; ++e) acc[e] += fr * (ns.cur[4 * o + e] - ns.cur[4 * i + e]);
+          }
+          for (int e = 0; e < D; ++e) ns.f[e][i] = acc[e];
+        }
+#pragma omp critical(bond_law_dual_broken)
+        newly.insert(newly.end(), mine.begin(), mine.end());
+      }
+      std::sort(newly.begin(), newly.end());
+      for (const auto& [k, i] : newly) {
+        ns.broken_weight[i] += static_cast<double>(bf.beta[k]) * ns.volume[bf.neighbor[k]];
+        bf.beta[k] = -bf.beta[k];
+        if (c.broken_log) c.broken_log->push_back(k);
+      }
+      return newly.size();
+    }
+  };
+
   template <int D, InfluenceShape S>
   struct Energy {
     static void run(const NodeSet& ns, const BondFamilies& bf, const BondLawCall& c,
@@ -157,6 +239,9 @@ struct BondLawKernels {
     }
     return dispatch<Forces>(ns.dim, c.shape, ns, bf, c);
   }
+  static std::size_t dual_forces(NodeSet& ns, BondFamilies& bf, const BondLawCall& c) {
+    return dispatch<DualForces>(ns.dim, c.shape, ns, bf, c);
+  }
   static void energy_density(const NodeSet& ns, const BondFamilies& bf, const BondLawCall& c,
                              std::vector<double>& W) {
     dispatch<Energy>(ns.dim, c.shape, ns, bf, c, W);
@@ -174,8 +259,8 @@ template <class L>
 constexpr BondLaw make_bond_law() {
   return BondLaw{L::name,          L::description,           L::stress_key,
                  L::stress_meaning, L::needs_fracture_energy, &L::breaking_stretch,
-                 &BondLawKernels<L>::forces, &BondLawKernels<L>::energy_density,
-                 &BondLawKernels<L>::stress};
+                 &BondLawKernels<L>::forces, &BondLawKernels<L>::dual_forces,
+                 &BondLawKernels<L>::energy_density, &BondLawKernels<L>::stress};
 }
 
 }  // namespace periadapt

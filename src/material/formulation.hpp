@@ -35,8 +35,7 @@ struct Formulation {
   bool row_local() const { return kind != Kind::Lps && !dual_horizon; }
   // The bond-based stiffness (static solve) and the bond-based Poisson ratio apply.
   bool bond_based() const { return kind != Kind::Lps; }
-  // Has a dual-horizon form; can be re-checked by the refinement overlay; takes a thermal strain.
-  bool has_dual_horizon_form() const { return kind != Kind::HistoryLaw; }
+  // Can be re-checked by the refinement overlay; takes a thermal strain.
   bool takes_overlay() const { return kind != Kind::HistoryLaw && !dual_horizon; }
   bool takes_thermal_strain() const { return kind == Kind::Pmb && !dual_horizon; }
   bool works_in_1d() const { return kind != Kind::Lps; }

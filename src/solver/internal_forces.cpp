@@ -48,6 +48,8 @@ std::size_t internal_forces(Model& m, bool allow_breaking, std::vector<std::uint
                                  allow_breaking, m.lps_scratch, log, W)
                : lps_forces(m.nodes, m.bonds, m.material.shape, m.material.lps_constants,
                             allow_breaking, m.lps_scratch, log, W, &m.pdro);
+  if (f.dual_horizon && f.kind == Kind::HistoryLaw)
+    return f.law->dual_forces(m.nodes, m.bonds, law_call(m, allow_breaking, log, W));
   if (f.dual_horizon)
     return pmb_dual_forces(m.nodes, m.bonds, m.material.shape, allow_breaking, log, W);
   return row_local_forces(m, allow_breaking, log, W, nullptr);
