@@ -69,13 +69,17 @@ struct SolidSurface {
 // A region of space: box, disk (2D), cylinder along an axis (3D), sphere, polygon (2D) or the
 // solid of a closed surface (3D).
 struct Shape {
-  enum class Kind { Box, Disk, Cylinder, Sphere, Polygon, Surface, All } kind = Kind::All;
+  enum class Kind { Box, Disk, Cylinder, Sphere, Polygon, Surface, NodeSet, All } kind = Kind::All;
   Box box;
   Vec3 center{0, 0, 0};
   double radius = 0;
   int axis = 2;  // cylinder axis (0,1,2)
   std::vector<Vec3> vertices;  // polygon (2D), in order
   std::shared_ptr<const SolidSurface> solid;  // Surface
+  // NodeSet: the cells (half-width `half`) of a point cloud's nodes of one block, sorted by x.
+  // A set of cells rather than of points, so that children of its nodes belong to it.
+  std::shared_ptr<const std::vector<Vec3>> cells;
+  double half = 0;
   bool outside = false;  // the complement: everything not in the shape (e.g. a clamped rim)
   bool contains(const Vec3& p, double tol = 0.0) const {
     return outside ? !contains_shape(p, -tol) : contains_shape(p, tol);
@@ -111,6 +115,14 @@ struct Shape {
         const double d = solid->distance(p);
         return tol > 0 ? (in || d <= tol) : (in && d > -tol);
       }
+      case Kind::NodeSet: {
+        const double r = half + tol;
+        auto it = std::lower_bound(cells->begin(), cells->end(), p[0] - r,
+                                   [](const Vec3& q, double x) { return q[0] < x; });
+        for (; it != cells->end() && (*it)[0] <= p[0] + r; ++it)
+          if (std::abs((*it)[1] - p[1]) <= r && std::abs((*it)[2] - p[2]) <= r) return true;
+        return false;
+      }
     }
     return false;
   }
@@ -141,6 +153,18 @@ struct Shape {
       case Kind::Polygon:
         return polygon_contains(vertices, p) ? 0.0 : polygon_boundary_distance(vertices, p);
       case Kind::Surface: return solid->inside(p) ? 0.0 : solid->distance(p);
+      case Kind::NodeSet: {
+        double best = INFINITY;
+        for (const Vec3& q : *cells) {
+          double r2 = 0;
+          for (int d = 0; d < 3; ++d) {
+            const double e = std::max(std::abs(p[d] - q[d]) - half, 0.0);
+            r2 += e * e;
+          }
+          best = std::min(best, r2);
+        }
+        return std::sqrt(best);
+      }
     }
     return 0.0;
   }

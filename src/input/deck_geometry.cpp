@@ -23,6 +23,7 @@ void parse_discretization_and_cracks(Section& top, Deck& dk) {
     g.dim = dk.dim;
     g.thickness = dk.thickness;
     g.spacing = s.number("spacing", std::nullopt, positive());
+    set_grid_spacing(g.spacing);
     if (s.has("horizon") && s.has("horizon_factor"))
       s.fail("horizon", "give either horizon or horizon_factor (m), not both");
     if (s.has("horizon")) {

@@ -6,12 +6,14 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <sstream>
 
 #include "core/expression.hpp"
 #include "input/deck_sections.hpp"
 #include "input/yaml_section.hpp"
 #include "discretize/surface_mesh.hpp"
+#include "input/point_cloud.hpp"
 
 namespace periadapt::deck_sections {
 
@@ -71,16 +73,44 @@ std::vector<Vec3> parse_polygon(Section& s) {
 // relative to it.
 static thread_local std::filesystem::path g_deck_folder;
 std::filesystem::path deck_folder() { return g_deck_folder; }
+// The grid spacing (node-set regions cover their nodes' cells).
+static thread_local double g_grid_spacing = 0;
+void set_grid_spacing(double dx) { g_grid_spacing = dx; }
 
 Shape parse_region(Section s, int dim) {
   Shape sh;
   const std::size_t D = static_cast<std::size_t>(dim);
   int kinds = s.has("box") + s.has("disk") + s.has("cylinder") + s.has("sphere") +
-              s.has("polygon") + s.has("surface") + s.has("gmsh") + s.has("all");
+              s.has("polygon") + s.has("surface") + s.has("gmsh") + s.has("node_set") + s.has("all");
   if (kinds != 1)
     s.fail("", "a region needs exactly one of: box, disk (2D), polygon (2D), cylinder (3D), "
-               "sphere (3D), surface (3D), gmsh, all");
-  if (s.has("gmsh")) {
+               "sphere (3D), surface (3D), gmsh, node_set, all");
+  if (s.has("node_set")) {
+    // The nodes of one block of a point cloud (its optional block column), as their cells.
+    Section ns = s.section("node_set");
+    std::filesystem::path file = ns.text("points");
+    if (file.is_relative()) file = deck_folder() / file;
+    const long block = ns.integer("block", std::nullopt, [](long v) {
+      return v >= 0 ? std::string() : std::string("a block id is >= 0");
+    });
+    std::vector<long> blocks;
+    std::vector<std::array<double, 4>> pts;
+    try {
+      pts = read_point_cloud(file.string(), dim, &blocks);
+    } catch (const PointCloudError& e) {
+      ns.fail("points", e.what());
+    }
+    if (blocks.empty()) ns.fail("points", file.string() + " has no block column (header ...,volume,block)");
+    auto cells = std::make_shared<std::vector<Vec3>>();
+    for (std::size_t k = 0; k < pts.size(); ++k)
+      if (blocks[k] == block) cells->push_back({pts[k][0], pts[k][1], pts[k][2]});
+    if (cells->empty()) ns.fail("block", "no point of " + file.string() + " is in block " + std::to_string(block));
+    std::sort(cells->begin(), cells->end());
+    ns.finish();
+    sh.kind = Shape::Kind::NodeSet;
+    sh.cells = std::move(cells);
+    sh.half = 0.5 * g_grid_spacing;
+  } else if (s.has("gmsh")) {
     if (dim < 2) s.fail("gmsh", "a Gmsh region is for 2D and 3D models");
     std::filesystem::path file = s.text("gmsh");
     if (file.is_relative()) file = deck_folder() / file;

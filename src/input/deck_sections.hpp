@@ -33,6 +33,7 @@ bool segment_meets_body(const Box& body, const Vec3& a, const Vec3& b, int dim);
 
 // Files a deck names are found relative to its folder.
 void set_deck_folder(const std::filesystem::path& folder);
+void set_grid_spacing(double dx);
 std::filesystem::path deck_folder();
 
 }  // namespace periadapt::deck_sections

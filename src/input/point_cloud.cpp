@@ -30,7 +30,9 @@ std::vector<std::string> split(const std::string& line) {
 
 }  // namespace
 
-std::vector<std::array<double, 4>> read_point_cloud(const std::string& path, int dim) {
+std::vector<std::array<double, 4>> read_point_cloud(const std::string& path, int dim,
+                                                    std::vector<long>* blocks) {
+  if (blocks) blocks->clear();
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
     throw PointCloudError(path + ": cannot open the point file (not a regular file)");
@@ -60,23 +62,36 @@ std::vector<std::array<double, 4>> read_point_cloud(const std::string& path, int
     return true;
   };
   if (!next_line()) fail(1, "empty file; the first line must be the header " + expected);
-  if (split(line) != names)
-    fail(1, "the header must be '" + expected + "' for a " + std::to_string(dim) + "D model, not '" +
-                trim(line) + "'");
+  std::vector<std::string> header = split(line);
+  const bool has_block = !header.empty() && header.back() == "block";
+  if (has_block) header.pop_back();
+  if (header != names)
+    fail(1, "the header must be '" + expected + "' (optionally followed by ',block') for a " +
+                std::to_string(dim) + "D model, not '" + trim(line) + "'");
+  const std::size_t columns = names.size() + (has_block ? 1 : 0);
   std::vector<std::array<double, 4>> points;
   constexpr std::size_t kMaxPoints = std::size_t{1} << 31;  // node indices are 32-bit
   while (next_line()) {
     if (trim(line).empty()) continue;
     const std::vector<std::string> cells = split(line);
-    if (cells.size() != names.size())
-      fail(number, fmt::format("{} values where the header has {} ({})", cells.size(), names.size(), expected));
+    if (cells.size() != columns)
+      fail(number, fmt::format("{} values where the header has {} ({}{})", cells.size(), columns,
+                               expected, has_block ? ",block" : ""));
     std::array<double, 4> p{0, 0, 0, 0};
-    for (std::size_t c = 0; c < cells.size(); ++c) {
+    if (has_block) {
+      long b = -1;
+      const std::string& cell = cells.back();
+      const auto [end, ec] = std::from_chars(cell.data(), cell.data() + cell.size(), b);
+      if (ec != std::errc() || end != cell.data() + cell.size() || b < 0 || b > 2147483647)
+        fail(number, "'" + cell + "' in column block is not an integer in 0 ... 2^31 - 1");
+      if (blocks) blocks->push_back(b);
+    }
+    for (std::size_t c = 0; c < names.size(); ++c) {
       double v = 0;
       const auto [end, ec] = std::from_chars(cells[c].data(), cells[c].data() + cells[c].size(), v);
       if (ec != std::errc() || end != cells[c].data() + cells[c].size() || !std::isfinite(v))
         fail(number, "'" + cells[c] + "' in column " + names[c] + " is not a finite number");
-      p[c + 1 == cells.size() ? 3 : c] = v;
+      p[c + 1 == names.size() ? 3 : c] = v;
     }
     if (!(p[3] > 0)) fail(number, "the volume must be > 0");
     if (points.size() >= kMaxPoints) fail(number, "more than 2^31 points");

@@ -15,7 +15,10 @@ struct PointCloudError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// (x, y, z, volume) per row; throws PointCloudError naming the file and line.
-std::vector<std::array<double, 4>> read_point_cloud(const std::string& path, int dim);
+// (x, y, z, volume) per row; throws PointCloudError naming the file and line. The header may end
+// with a "block" column (a non-negative integer per row: named node sets, as Peridigm's text
+// discretization has); `blocks` receives it (empty without the column).
+std::vector<std::array<double, 4>> read_point_cloud(const std::string& path, int dim,
+                                                    std::vector<long>* blocks = nullptr);
 
 }  // namespace periadapt
