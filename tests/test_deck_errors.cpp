@@ -229,6 +229,8 @@ TEST(DeckErrors, EveryLoaderCheckRefusesItsCaseNamingTheKey) {
        "material.critical_stretch", "derives its breaking stretch"},
       {{"model.formulation=bilinear_softening", "material.peak_stress=1e6", "damage.overlay.n=2"},
        "damage", "its own history"},
+      {{"model.formulation=elastic_perfectly_plastic", "material.yield_stress=1e6",
+        "adapt={max_level: 1, energy_trigger: 0.5, coarsen: true}"}, "adapt.coarsen", "history"},
       {{"discretization.spacing=0"}, "discretization.spacing", ""},
       {{"discretization.horizon=0.003"}, "discretization.horizon", "not both"},
       {{"discretization.horizon_factor=0.5"}, "discretization.horizon_factor", ""},

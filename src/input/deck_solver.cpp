@@ -172,6 +172,10 @@ void parse_adapt(Section& top, Deck& dk) {
     if (ad.coarsen && ad.method == NodeGeneration::A)
       a->fail("coarsen", "coarsening restores parents from their children (method b); method a "
                          "keeps the parents and is not coarsened");
+    if (ad.coarsen && Formulation::named(dk.formulation)->keeps_bond_history())
+      a->fail("coarsen", "a restored parent's bonds would start without the plastic or softening "
+                         "history its children's bonds carried (formulation " + dk.formulation +
+                         "); leave coarsening off");
     if (ad.coarsen && !ad.energy_fraction)
       a->fail("coarsen", "coarsening needs the energy trigger (it coarsens where the energy "
                          "is below the trigger level)");
