@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "input/deck.hpp"
+#include "input/deck_builder.hpp"
 #include "input/deck_error.hpp"
 
 using namespace periadapt;
@@ -304,5 +305,54 @@ TEST(DeckErrors, EveryLoaderCheckRefusesItsCaseNamingTheKey) {
       EXPECT_NE(msg.find(r.because), std::string::npos) << msg;
       EXPECT_NE(msg.find("bad.yaml"), std::string::npos) << msg;
     }
+  }
+}
+
+TEST(DeckBuilder, BuildsWhatTheSameYamlReadsAndNamesABadKey) {
+  const Deck text = parse_deck(
+      "model: {dimension: 2, plane: strain}\n"
+      "material: {youngs_modulus: 72.0e9, density: 2440, fracture_energy: 135}\n"
+      "discretization: {spacing: 0.001, horizon_factor: 3.015, body: {box: {min: [0, 0], max: "
+      "[0.1, 0.04]}}}\n"
+      "loads:\n  - {name: top, type: traction, region: {box: {min: [0, 0.039], max: [0.1, 0.04]}},"
+      " value: [0, 1.2e7]}\n"
+      "initial_conditions: {velocity: [\"400 * x\", 0]}\n"
+      "solver: {end_time: 1.0e-6}\n",
+      "text.yaml");
+  DeckBuilder b;
+  b.set("model.dimension", 2)
+      .set("model.plane", "strain")
+      .set("material.youngs_modulus", 72.0e9)
+      .set("material.density", 2440.0)
+      .set("material.fracture_energy", 135.0)
+      .set("discretization.spacing", 0.001)
+      .set("discretization.horizon_factor", 3.015)
+      .set("discretization.body.box.min", {0.0, 0.0})
+      .set("discretization.body.box.max", {0.1, 0.04})
+      .append("loads", DeckBuilder()
+                           .set("name", "top")
+                           .set("type", "traction")
+                           .set("region.box.min", {0.0, 0.039})
+                           .set("region.box.max", {0.1, 0.04})
+                           .set("value", {0.0, 1.2e7}))
+      .set("initial_conditions.velocity", std::vector<std::string>{"400 * x", "0"})
+      .set("solver.end_time", 1.0e-6);
+  const Deck built = b.build();
+  EXPECT_EQ(built.dim, text.dim);
+  EXPECT_EQ(built.plane, text.plane);
+  EXPECT_EQ(built.E, text.E);
+  EXPECT_EQ(built.G0, text.G0);
+  EXPECT_EQ(built.horizon, text.horizon);  // 3.015 mm both ways: the doubles round-trip
+  EXPECT_EQ(built.grid.body.hi, text.grid.body.hi);
+  ASSERT_EQ(built.loads.size(), 1u);
+  EXPECT_EQ(built.loads[0].value, text.loads[0].value);
+  EXPECT_EQ(built.loads[0].region.box.lo, text.loads[0].region.box.lo);
+  EXPECT_EQ(built.initial_velocity[0], text.initial_velocity[0]);
+  EXPECT_EQ(built.end_time, text.end_time);
+  try {
+    b.set("material.youngs_modulus", -1.0).build();
+    FAIL() << "a negative modulus was accepted";
+  } catch (const DeckError& e) {
+    EXPECT_NE(std::string(e.what()).find("material.youngs_modulus"), std::string::npos) << e.what();
   }
 }

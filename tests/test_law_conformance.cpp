@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "input/deck_builder.hpp"
 #include "material/bond_law.hpp"
 #include "setup/build_model.hpp"
 #include "solver/internal_forces.hpp"
@@ -24,17 +25,15 @@ namespace {
 
 struct LawCase {
   std::string formulation;
-  std::string keys;  // extra material keys
   std::string pairing = "source_horizon";
 };
 
 std::vector<LawCase> every_law() {
-  std::vector<LawCase> out{{"pmb", ""}, {"lps", "poisson_ratio: 0.3, "}};
-  // A history law's stress key at half the brittle critical stretch's stress (E = 1e9,
-  // G0 = 10, delta = 3 mm: s0 ~ 1.1e-3 in 2D, 8e-4 in 3D), so that the random deformation below
-  // takes bonds past their onset.
-  for (const BondLaw* law : bond_laws())
-    out.push_back({std::string(law->name), std::string(law->stress_key) + ": 4.0e5, "});
+  // A history law's stress key is 4e5 Pa (block() below): an onset stretch of 2e-4 to 2.7e-4,
+  // below the brittle critical stretch (E = 1e9, G0 = 10, delta = 3 mm: ~1.2e-3 in 2D, ~1.7e-3
+  // in 3D, roughly), so that the random deformation below takes bonds past their onset.
+  std::vector<LawCase> out{{"pmb"}, {"lps"}};
+  for (const BondLaw* law : bond_laws()) out.push_back({std::string(law->name)});
   // Every one also in the dual-horizon form.
   const std::size_t n = out.size();
   for (std::size_t k = 0; k < n; ++k) {
@@ -45,16 +44,24 @@ std::vector<LawCase> every_law() {
 }
 
 Model block(const LawCase& c, int dim, int cells) {
-  const std::string side = std::to_string(cells * 1e-3);
-  std::string lo = "[0", hi = "[" + side;
-  for (int d = 1; d < dim; ++d) lo += ", 0", hi += ", " + side;
-  const std::string yaml =
-      "model: {dimension: " + std::to_string(dim) + ", formulation: " + c.formulation +
-      "}\nmaterial: {youngs_modulus: 1.0e9, density: 1000, fracture_energy: 10.0, " + c.keys +
-      "}\ndiscretization: {spacing: 0.001, horizon_factor: 3, quadrature: subcell, body: {box: "
-      "{min: " + lo +
-      "], max: " + hi + "]}}}\nsolver: {steps: 1, bond_pairing: " + c.pairing + "}\n";
-  return build_model(test::deck_from(yaml));
+  const std::vector<double> lo(static_cast<std::size_t>(dim), 0.0),
+      hi(static_cast<std::size_t>(dim), cells * 1e-3);
+  DeckBuilder b;
+  b.set("model.dimension", dim)
+      .set("model.formulation", c.formulation)
+      .set("material.youngs_modulus", 1.0e9)
+      .set("material.density", 1000.0)
+      .set("material.fracture_energy", 10.0)
+      .set("discretization.spacing", 0.001)
+      .set("discretization.horizon_factor", 3.0)
+      .set("discretization.quadrature", "subcell")
+      .set("discretization.body.box.min", lo)
+      .set("discretization.body.box.max", hi)
+      .set("solver.steps", 1)
+      .set("solver.bond_pairing", c.pairing);
+  if (c.formulation == "lps") b.set("material.poisson_ratio", 0.3);
+  if (const BondLaw* law = find_bond_law(c.formulation)) b.set("material." + std::string(law->stress_key), 4.0e5);
+  return build_model(b.build());
 }
 
 std::size_t centre_node(const NodeSet& ns, double centre) {
