@@ -38,6 +38,39 @@ struct BondLawKernels {
     }
   }
 
+  // A row's force density and energy sums.
+  struct RowSum {
+    double f0 = 0, f1 = 0, f2 = 0, w = 0;
+    void add(double fr, double d0, double d1, double d2, double energy) {
+      f0 += fr * d0;
+      f1 += fr * d1;
+      f2 += fr * d2;
+      w += energy;
+    }
+    template <int D>
+    void store_forces(NodeSet& ns, std::size_t i) const {
+      ns.f[0][i] = f0;
+      if constexpr (D > 1) ns.f[1][i] = f1;
+      if constexpr (D > 2) ns.f[2][i] = f2;
+    }
+  };
+
+  // One intact bond k at stretch s: updates its history and gives its force factor F and
+  // energy phi; false when it breaks now. Off the law (`law` false: an end in a no-fail region)
+  // the bond stays on the elastic branch.
+  static bool respond(BondFamilies& bf, std::uint64_t k, bool law, bool allow_breaking, double s,
+                      double a, double b, double& F, double& phi) {
+    F = s;
+    phi = s * s;
+    if (!law) return true;
+    const double h = L::update(s, bf.state[k], a, b);
+    bf.state[k] = h;
+    if (allow_breaking && L::failed(s, h, b)) return false;
+    F = L::force(s, h, a, b);
+    phi = L::energy(s, h, a, b);
+    return true;
+  }
+
   template <int D, InfluenceShape S>
   struct Forces {
     static std::size_t run(NodeSet& ns, BondFamilies& bf, const BondLawCall& c) {
@@ -52,40 +85,30 @@ struct BondLawKernels {
         if (!(ns.flags[i] & kActive)) continue;
         const bool node_breaks = !(ns.flags[i] & kNoFail);
         const double b = ns.critical_stretch[i], ci = ns.micromodulus[i];
-        double f0 = 0, f1 = 0, f2 = 0, w = 0, sm = -INFINITY, bw = 0;
+        RowSum sum;
+        double sm = -INFINITY, bw = 0;
         std::size_t nb = 0;
         for_intact<D, S>(ns, bf, i, [&](std::uint64_t k, std::size_t j, double d0, double d1,
                                         double d2, double r, double s, double gw, double len) {
-          double F = s, phi = s * s;
-          if (node_breaks && bf.inv_length[k] > 0.0) {
-            const double h = L::update(s, bf.state[k], a, b);
-            bf.state[k] = h;
-            if (c.allow_breaking && L::failed(s, h, b)) {
-              bf.beta[k] = -bf.beta[k];
-              bw += -static_cast<double>(bf.beta[k]) * ns.cur[4 * j + 3];
-              ++nb;
-              if (c.broken_log) {
+          const bool law = node_breaks && bf.inv_length[k] > 0.0;
+          double F, phi;
+          if (!respond(bf, k, law, c.allow_breaking, s, a, b, F, phi)) {
+            bf.beta[k] = -bf.beta[k];
+            bw += -static_cast<double>(bf.beta[k]) * ns.cur[4 * j + 3];
+            ++nb;
+            if (c.broken_log) {
 #pragma omp critical(bond_law_broken_log)
-                c.broken_log->push_back(k);
-              }
-              return;
+              c.broken_log->push_back(k);
             }
-            F = L::force(s, h, a, b);
-            phi = L::energy(s, h, a, b);
-            sm = std::max(sm, s);
+            return;
           }
-          const double fr = ci * gw * F / r;
-          f0 += fr * d0;
-          f1 += fr * d1;
-          f2 += fr * d2;
-          w += gw * phi * len;
+          if (law) sm = std::max(sm, s);
+          sum.add(ci * gw * F / r, d0, d1, d2, gw * phi * len);
         });
-        ns.f[0][i] = f0;
-        if constexpr (D > 1) ns.f[1][i] = f1;
-        if constexpr (D > 2) ns.f[2][i] = f2;
+        sum.template store_forces<D>(ns, i);
         ns.broken_weight[i] += bw;
         broken_total += nb;
-        if (W) W[i] = 0.25 * ci * w;
+        if (W) W[i] = 0.25 * ci * sum.w;
         if (smax) smax[i] = sm;
       }
       return broken_total;
@@ -120,33 +143,22 @@ struct BondLawKernels {
           if (!(ns.flags[i] & kActive)) continue;
           const bool node_breaks = !(ns.flags[i] & kNoFail);
           const double b = ns.critical_stretch[i], half_c = 0.5 * ns.micromodulus[i];
-          double f0 = 0, f1 = 0, f2 = 0, w = 0;
+          RowSum sum;
           for_intact<D, S>(ns, bf, i, [&](std::uint64_t k, std::size_t j, double d0, double d1,
                                           double d2, double r, double s, double gw, double len) {
-            double F = s, phi = s * s;
-            if (node_breaks && bf.inv_length[k] > 0.0) {
-              const double h = L::update(s, bf.state[k], a, b);
-              bf.state[k] = h;
-              if (c.allow_breaking && L::failed(s, h, b)) {
-                mine.emplace_back(k, static_cast<std::uint32_t>(i));
-                return;
-              }
-              F = L::force(s, h, a, b);
-              phi = L::energy(s, h, a, b);
+            double F, phi;
+            if (!respond(bf, k, node_breaks && bf.inv_length[k] > 0.0, c.allow_breaking, s, a, b,
+                         F, phi)) {
+              mine.emplace_back(k, static_cast<std::uint32_t>(i));
+              return;
             }
             // gw = g beta V_j: the factor per unit neighbour volume is gw / V_j.
             const double q = half_c * gw / ns.cur[4 * j + 3] * F / r;
             fac[k] = q;
-            const double fr = q * ns.cur[4 * j + 3];
-            f0 += fr * d0;
-            f1 += fr * d1;
-            f2 += fr * d2;
-            w += gw * phi * len;
+            sum.add(q * ns.cur[4 * j + 3], d0, d1, d2, gw * phi * len);
           });
-          ns.f[0][i] = f0;
-          if constexpr (D > 1) ns.f[1][i] = f1;
-          if constexpr (D > 2) ns.f[2][i] = f2;
-          if (W) W[i] = 0.25 * ns.micromodulus[i] * w;
+          sum.template store_forces<D>(ns, i);
+          if (W) W[i] = 0.25 * ns.micromodulus[i] * sum.w;
         }
 #pragma omp for schedule(dynamic, 512)
         for (std::size_t i = 0; i < n; ++i) {
