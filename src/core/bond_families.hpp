@@ -27,8 +27,8 @@ struct BondFamilies {
   std::vector<float> beta;
 
   // History laws only (material/bond_law.hpp): each bond's history value (plastic stretch,
-  // largest stretch), carried with the bond through row rebuilds and compactions; a new bond
-  // starts at 0. Empty, and keeps_state false, for PMB and LPS.
+  // largest stretch), copied by compactions; rows searched again get their surviving bonds'
+  // values back by pair (adapt/crack_memory.cpp); a new bond starts at 0. Empty, and keeps_state false, for PMB and LPS.
   bool keeps_state = false;
   std::vector<double> state;
 

@@ -14,7 +14,6 @@ struct Entry {
   std::uint32_t j;
   float beta;
   double inv_len;
-  double state = 0;  // history laws: the bond's history value
 };
 
 }  // namespace
@@ -116,7 +115,7 @@ class FamilySearch {
       fam.neighbor[at] = e.j;
       fam.inv_length[at] = e.inv_len;
       fam.beta[at] = e.beta;
-      if (fam.keeps_state) fam.state[at] = e.state;
+      if (fam.keeps_state) fam.state[at] = 0.0;  // rebuilt rows get their histories by pair
       ++at;
     }
   }
@@ -245,8 +244,7 @@ void rebuild_rows(BondFamilies& fam, const NodeSet& nodes, const QuadratureSpec&
     std::vector<Entry>& out = found[r];
     for (std::uint64_t k = fam.offsets[i]; k < fam.ends[i]; ++k)
       if (nodes.flags[fam.neighbor[k]] & kActive)
-        out.push_back({fam.neighbor[k], fam.beta[k], fam.inv_length[k],
-                       fam.keeps_state ? fam.state[k] : 0.0});
+        out.push_back({fam.neighbor[k], fam.beta[k], fam.inv_length[k]});
     if (!fresh.empty()) newcomers.collect(i, out, true);
   }
   std::uint64_t appended = 0, dropped = 0;
