@@ -105,7 +105,7 @@ std::vector<std::uint32_t> rebuild_families(Model& m, const CrackMemory& mem,
                            [&](std::uint32_t j, double d2) {
                              if (!(ns.flags[j] & kActive) || rebuild[j]) return;
                              const double rj = quadrature_search_radius(
-                                 m.quadrature.rule, D, ns.horizon[j], ns.spacing[j]);
+                                 m.quadrature.rule, D, ns.horizon[j], std::max(ns.spacing[j], ns.spacing[c]));
                              if (d2 <= rj * rj * (1 + 1e-9)) rebuild[j] = 1;
                            });
     }

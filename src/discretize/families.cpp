@@ -46,7 +46,7 @@ namespace {
 class FamilySearch {
  public:
   FamilySearch(const NodeSet& nodes, const QuadratureSpec& quad)
-      : nodes_(nodes), quad_(quad), grid_(nodes.dim,
+      : nodes_(nodes), quad_(quad), cell_reach_(largest_cell(nodes)), grid_(nodes.dim,
                                           {nodes.x[0].data(), nodes.x[1].data(), nodes.x[2].data()},
                                           nodes.size(), search_radius(nodes, quad)) {}
   // Only the rows `rows` will be searched: the cell list holds the active nodes that can be in
@@ -55,14 +55,14 @@ class FamilySearch {
   // radius made each of them test ~4x more candidates than it has neighbours.
   FamilySearch(const NodeSet& nodes, const QuadratureSpec& quad,
                const std::vector<std::uint32_t>& rows)
-      : nodes_(nodes), quad_(quad), grid_(nodes.dim,
+      : nodes_(nodes), quad_(quad), cell_reach_(largest_cell(nodes)), grid_(nodes.dim,
                                           {nodes.x[0].data(), nodes.x[1].data(), nodes.x[2].data()},
                                           candidates(nodes, quad, rows), cell_size(nodes, quad, rows)) {}
 
   // Only the given candidates can be neighbours (ids ascending), in cells of `cell`.
   FamilySearch(const NodeSet& nodes, const QuadratureSpec& quad,
                const std::vector<std::uint32_t>& candidates, double cell)
-      : nodes_(nodes), quad_(quad), grid_(nodes.dim,
+      : nodes_(nodes), quad_(quad), cell_reach_(largest_cell(nodes)), grid_(nodes.dim,
                                           {nodes.x[0].data(), nodes.x[1].data(), nodes.x[2].data()},
                                           candidates, cell) {}
 
@@ -72,7 +72,9 @@ class FamilySearch {
     const NodeSet& nodes = nodes_;
     const std::array<double, 3> p{nodes.x[0][i], nodes.x[1][i], nodes.x[2][i]};
     const double delta = nodes.horizon[i];
-    const double radius = quadrature_search_radius(quad_.rule, nodes.dim, delta, nodes.spacing[i]);
+    // A cell reaches into the horizon when its node is within half its own diagonal of it:
+    // next to a coarser level that is the coarse cells' reach, not the source's.
+    const double radius = quadrature_search_radius(quad_.rule, nodes.dim, delta, cell_reach_);
     // Nodes exactly on the horizon (m integer) are included whatever the rounding.
     grid_.for_each_within(p, radius * (1 + 1e-12), [&](std::uint32_t j, double d2) {
       if (j == i || !(nodes.flags[j] & kActive)) return;
@@ -123,13 +125,20 @@ class FamilySearch {
   // The largest search radius of the rows.
   static double search_radius(const NodeSet& nodes, const QuadratureSpec& quad,
                               const std::vector<std::uint32_t>& rows) {
-    double r = 0;
-    for (std::uint32_t i : rows)
-      r = std::max(r, quadrature_search_radius(quad.rule, nodes.dim, nodes.horizon[i], nodes.spacing[i]));
+    double h = 0;
+    for (std::uint32_t i : rows) h = std::max(h, nodes.horizon[i]);
+    const double r = quadrature_search_radius(quad.rule, nodes.dim, h, largest_cell(nodes));
     return std::max(r * (1 + 1e-9), 1e-300);
   }
 
  private:
+  // The largest spacing of an active node: the farthest any cell reaches beyond its node.
+  static double largest_cell(const NodeSet& nodes) {
+    double dx = 0;
+    for (std::size_t i = 0; i < nodes.size(); ++i)
+      if (nodes.flags[i] & kActive) dx = std::max(dx, nodes.spacing[i]);
+    return dx;
+  }
   static double search_radius(const NodeSet& nodes, const QuadratureSpec& quad) {
     double hmax = 0, dxmax = 0;
     for (std::size_t i = 0; i < nodes.size(); ++i) {
@@ -143,8 +152,9 @@ class FamilySearch {
   static double cell_size(const NodeSet& nodes, const QuadratureSpec& quad,
                           const std::vector<std::uint32_t>& rows) {
     double r = INFINITY;
+    const double dx = largest_cell(nodes);
     for (std::uint32_t i : rows)
-      r = std::min(r, quadrature_search_radius(quad.rule, nodes.dim, nodes.horizon[i], nodes.spacing[i]));
+      r = std::min(r, quadrature_search_radius(quad.rule, nodes.dim, nodes.horizon[i], dx));
     return std::max(r, 0.25 * search_radius(nodes, quad, rows));
   }
   static std::vector<std::uint32_t> candidates(const NodeSet& nodes, const QuadratureSpec& quad,
@@ -153,6 +163,7 @@ class FamilySearch {
   }
   const NodeSet& nodes_;
   const QuadratureSpec& quad_;
+  double cell_reach_;
   CellGrid grid_;
 };
 
