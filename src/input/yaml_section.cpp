@@ -241,7 +241,7 @@ void Section::finish() const {
       msg += "; did you mean '" + best + "'?";
     std::string list;
     for (const auto& c : known) list += (list.empty() ? "" : ", ") + c;
-    msg += " Allowed here: " + list;
+    msg += (msg.back() == '?' ? " " : ". ") + std::string("Allowed here: ") + list;
     fail_at(kv.first, k, msg);
   }
 }
