@@ -220,7 +220,7 @@ int main(int argc, char** argv) {
                   "pdro-*: overlay sub-pairs over the whole bond instead of the paper's three");
   study->add_option("--deck", study_opt.deck, "pdro-sent, pdro-disk: the deck to vary (default: "
                                               "examples/pdro_sent_2d.yaml, examples/pdro_disk_2d.yaml)");
-  study->add_flag("--quick", study_opt.quick, "pdro-bar: targets 0.9, 0.5, 0.2 mm only; pdro-sent: 1 mm native and n = 2, 5 only; pdro-disk: n = 2 only");
+  study->add_flag("--quick", study_opt.quick, "pdro-bar: targets 0.9, 0.5, 0.2 mm only; pdro-sent: 1 mm native and n = 2, 5 only; pdro-disk: n = 2 only; bobaru-1d-density-jump: Table III grids only");
   study->add_option("--threads", threads, "OpenMP threads (default: all cores)")
       ->check(CLI::Range(1, 4096));
   // A first word that is no subcommand (CLI11 would report only that one is required).

@@ -16,9 +16,19 @@
 
 namespace periadapt {
 
-namespace {
-
-}  // namespace
+double bar_displacement_at(const NodeSet& ns, double x) {
+  // Linear interpolation between the active nodes around x (refinement moves them).
+  std::size_t lo = ns.size(), hi = ns.size();
+  for (std::size_t i = 0; i < ns.size(); ++i) {
+    if (!(ns.flags[i] & kActive)) continue;
+    const double xi = ns.x[0][i];
+    if (xi <= x && (lo == ns.size() || xi > ns.x[0][lo])) lo = i;
+    if (xi >= x && (hi == ns.size() || xi < ns.x[0][hi])) hi = i;
+  }
+  if (lo == hi) return ns.u[0][lo];
+  const double w = (x - ns.x[0][lo]) / (ns.x[0][hi] - ns.x[0][lo]);
+  return (1 - w) * ns.u[0][lo] + w * ns.u[0][hi];
+}
 
 // Peak of u(400, t): the largest sample refined by a parabola through its neighbours.
 WaveArrival bobaru_wave_arrival(int nodes, double delta, bool adaptive, const std::string& scaling) {
@@ -51,20 +61,6 @@ WaveArrival bobaru_wave_arrival(int nodes, double delta, bool adaptive, const st
   vv.initialize();
   std::unique_ptr<Adaptor> ad;
   if (adaptive) ad = std::make_unique<Adaptor>(m, vv, dk.adapt);
-  // u(400): linear interpolation between the active nodes around x = 400 (refinement moves them).
-  auto probe = [&]() {
-    const NodeSet& ns = m.nodes;
-    std::size_t lo = ns.size(), hi = ns.size();
-    for (std::size_t i = 0; i < ns.size(); ++i) {
-      if (!(ns.flags[i] & kActive)) continue;
-      const double x = ns.x[0][i];
-      if (x <= 400.0 && (lo == ns.size() || x > ns.x[0][lo])) lo = i;
-      if (x >= 400.0 && (hi == ns.size() || x < ns.x[0][hi])) hi = i;
-    }
-    if (lo == hi) return ns.u[0][lo];
-    const double w = (400.0 - ns.x[0][lo]) / (ns.x[0][hi] - ns.x[0][lo]);
-    return (1 - w) * ns.u[0][lo] + w * ns.u[0][hi];
-  };
   double best = -1, t_best = 0, prev = 0, prev2 = 0, node_sum = 0;
   WaveArrival a;
   a.min_nodes = m.nodes.size();
@@ -76,7 +72,7 @@ WaveArrival bobaru_wave_arrival(int nodes, double delta, bool adaptive, const st
     node_sum += static_cast<double>(active);
     a.min_nodes = std::min(a.min_nodes, active);
     a.max_nodes = std::max(a.max_nodes, active);
-    const double u = probe();
+    const double u = bar_displacement_at(m.nodes, 400.0);
     if (prev > best && prev >= u && prev >= prev2) {
       // prev is a local maximum: parabola through (t-2dt, prev2), (t-dt, prev), (t, u).
       const double den = prev2 - 2 * prev + u;

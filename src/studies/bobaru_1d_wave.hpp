@@ -5,6 +5,8 @@
 // time and amplitude of the peak at x = 400 beside the published values, and fitted rates.
 #include <string>
 
+#include "core/node_set.hpp"
+
 namespace periadapt {
 
 struct WaveArrival {
@@ -19,6 +21,9 @@ struct WaveArrival {
 // `scaling` (adaptive only): the AGRS horizon scaling of the refined zone, "delta" or "m".
 WaveArrival bobaru_wave_arrival(int nodes, double delta, bool adaptive = false,
                                 const std::string& scaling = "delta");
+
+// u at x of a 1D bar: linear interpolation between the active nodes around x.
+double bar_displacement_at(const NodeSet& nodes, double x);
 
 int run_bobaru_1d_wave_study(const std::string& out_dir);
 

@@ -6,23 +6,32 @@
 
 namespace periadapt {
 
-double PlateErrors::mean_ex(double lo, double hi) const {
+namespace {
+
+double mean_over(const std::vector<double>& at, const std::vector<double>& e, double lo, double hi) {
   double s = 0;
   int n = 0;
-  for (std::size_t k = 0; k < x.size(); ++k)
-    if (x[k] >= lo && x[k] <= hi) s += ex[k], ++n;
+  for (std::size_t k = 0; k < at.size(); ++k)
+    if (at[k] >= lo && at[k] <= hi) s += e[k], ++n;
   return n ? s / n : 0.0;
 }
 
-double PlateErrors::max_ex(double lo, double hi) const {
+double max_over(const std::vector<double>& at, const std::vector<double>& e, double lo, double hi) {
   double m = 0;
-  for (std::size_t k = 0; k < x.size(); ++k)
-    if (x[k] >= lo && x[k] <= hi) m = std::max(m, ex[k]);
+  for (std::size_t k = 0; k < at.size(); ++k)
+    if (at[k] >= lo && at[k] <= hi) m = std::max(m, e[k]);
   return m;
 }
 
+}  // namespace
+
+double PlateErrors::mean_ex(double lo, double hi) const { return mean_over(x, ex, lo, hi); }
+double PlateErrors::max_ex(double lo, double hi) const { return max_over(x, ex, lo, hi); }
+double PlateErrors::mean_ey(double lo, double hi) const { return mean_over(y, ey, lo, hi); }
+double PlateErrors::max_ey(double lo, double hi) const { return max_over(y, ey, lo, hi); }
+
 std::string tension_plate_deck(const std::string& surface_correction, const std::string& bond_pairing,
-                               int refined_level) {
+                               int refined_level, bool upper_half) {
   std::string d = R"(
 model: {dimension: 2, plane: stress, thickness: 0.01}
 material: {youngs_modulus: 200.0e9, density: 7850.0}
@@ -41,9 +50,12 @@ boundary_conditions:
   - {name: horizontal axis, region: {box: {min: [-0.5, 0], max: [0.5, 0]}}, displacement: [null, 0]}
 damage: {enabled: false}
 solver: {type: static, bond_pairing: )" + bond_pairing + "}\n";
+  // The zone stops short of the constrained axis, whose coarse nodes stay.
+  const std::string zone = upper_half ? "{min: [-0.5, 0.001], max: [0.5, 0.25]}"
+                                      : "{min: [-0.5, -0.25], max: [-0.001, 0.25]}";
   if (refined_level > 0)
-    d += "adapt:\n  scaling: delta\n  initial_refinement: [{region: {box: {min: [-0.5, -0.25], "
-         "max: [-0.001, 0.25]}}, level: " + std::to_string(refined_level) + "}]\n";
+    d += "adapt:\n  scaling: delta\n  initial_refinement: [{region: {box: " + zone +
+         "}, level: " + std::to_string(refined_level) + "}]\n";
   return d;
 }
 

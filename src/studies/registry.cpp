@@ -2,6 +2,8 @@
 
 #include "studies/bobaru_1d_static.hpp"
 #include "studies/bobaru_1d_wave.hpp"
+#include "studies/bobaru_density_jump.hpp"
+#include "studies/bobaru_jumps.hpp"
 #include "studies/pdro_bar.hpp"
 #include "studies/pdro_disk.hpp"
 #include "studies/pdro_sent.hpp"
@@ -27,12 +29,18 @@ const std::vector<Study>& studies() {
   static const std::vector<Study> table = {
       {"bobaru-1d-static", "Bobaru et al. 2009, sections 2-5: static 1D bar, uniform and adaptive grids",
        [](const StudyOptions& o) { return run_bobaru_1d_study(o.out_dir); }},
+      {"bobaru-1d-jumps", "Bobaru et al. 2009, 3.2: the inverted-triangle bar's jumps and load spikes against Eqs. 29-34",
+       [](const StudyOptions& o) { return run_bobaru_jumps_study(o.out_dir); }},
       {"bobaru-1d-wave", "Bobaru et al. 2009, 6.2: half-Gaussian wave in a 1D bar, Tables IV-V",
        [](const StudyOptions& o) { return run_bobaru_1d_wave_study(o.out_dir); }},
+      {"bobaru-1d-density-jump", "Bobaru et al. 2009, 6.2.1: a wave through a denser middle third at constant horizon, Table III",
+       [](const StudyOptions& o) { return run_bobaru_density_jump_study(o.out_dir, o.quick); }},
       {"static-plate-2d", "thesis 4.1: static plate in tension on the uniform grid, with and without surface correction",
        [](const StudyOptions& o) { return run_static_plate_study(o.out_dir); }},
       {"static-plate-refined", "thesis 4.1, models A-C: the static plate with its left half refined to levels 1-3",
        [](const StudyOptions& o) { return run_static_plate_refined_study(o.out_dir); }},
+      {"static-plate-upper", "thesis 4.1, models D-F: the static plate with its upper half refined to levels 1-3",
+       [](const StudyOptions& o) { return run_static_plate_upper_study(o.out_dir); }},
       {"wave-patch-2d", "thesis 4.2, models A-C: a Gaussian wave crossing a level-1 patch",
        [](const StudyOptions& o) { return run_wave_patch_study(o.out_dir); }},
       {"wave-levels-2d", "thesis 4.2, Tables 4.4-4.6: a Gaussian wave through regions refined to levels 1-3",

@@ -10,4 +10,8 @@ namespace periadapt {
 
 int run_static_plate_refined_study(const std::string& out_dir);
 
+// Models D-F: the upper half refined instead (Figs. 4.12-4.21). Prints the peak and plateau
+// errors of u_y on the vertical centre line on each side, and u_x along x = 0.2 m on each side.
+int run_static_plate_upper_study(const std::string& out_dir);
+
 }  // namespace periadapt
