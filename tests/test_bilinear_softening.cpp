@@ -55,7 +55,9 @@ TEST(BilinearSoftening, EnvelopeSecantUnloadingAndFailureFollowTheHandCalculatio
   EXPECT_NEAR(tension(m, s2) / (0.1 * K * sp), 1.0, 1e-9);
   EXPECT_EQ(tension(m, 1.0001 * sf), 0.0);
   for (std::size_t k = 0; k < m.bonds.beta.size(); ++k)
-    if (m.bonds.breakable(k)) ASSERT_LT(m.bonds.beta[k], 0.0f);
+    if (m.bonds.breakable(k)) {
+      ASSERT_LT(m.bonds.beta[k], 0.0f);
+    }
 }
 
 TEST(BilinearSoftening, WorkAlongTheEnvelopeIsTheBrittleBondsWork) {

@@ -63,10 +63,14 @@ TEST(ElasticPerfectlyPlastic, LoadUnloadCycleGivesTheHandCalculatedPlateauAndPer
   EXPECT_NEAR(p_path.back() / (-K * sy), 1.0, 1e-9);
   const double s_c = s_set - sy;
   for (std::size_t k = 29; k < s_path.size(); ++k)
-    if (s_path[k] > s_c + 1e-12) EXPECT_GT(p_path[k], -K * sy * (1 - 1e-9)) << s_path[k];
+    if (s_path[k] > s_c + 1e-12) {
+      EXPECT_GT(p_path[k], -K * sy * (1 - 1e-9)) << s_path[k];
+    }
   // Every bond holds the plastic stretch of the last compressive flow: -3 s_Y + s_Y.
   for (std::size_t k = 0; k < m.bonds.state.size(); ++k)
-    if (m.bonds.breakable(k)) ASSERT_NEAR(m.bonds.state[k], -30 * ds + sy, 1e-13);
+    if (m.bonds.breakable(k)) {
+      ASSERT_NEAR(m.bonds.state[k], -30 * ds + sy, 1e-13);
+    }
 }
 
 TEST(ElasticPerfectlyPlastic, BreakingStretchDissipatesTheFractureEnergy) {
