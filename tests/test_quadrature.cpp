@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "discretize/lattice_moment.hpp"
 #include "discretize/partial_volume.hpp"
 #include "setup/build_model.hpp"
 #include "studies/weak_directions.hpp"
@@ -113,4 +114,37 @@ TEST(Quadrature, WeakBondDirectionsFollowTheFamilyOfEachRule) {
        {0.0, 18.435, 26.565, 33.690, 45.0, 56.310, 63.435, 71.565, 90.0});
   const std::vector<double> m6 = weak_directions_deg(6.0, "pa_pdlammps");
   EXPECT_TRUE(std::any_of(m6.begin(), m6.end(), [](double a) { return std::abs(a - 30.964) < 1e-3; }));
+}
+
+// The bulk bond stiffness of a lattice against the continuum's. 1D with exact cell overlaps:
+// the constant kernel's midpoint sum of |xi| is exact (1); the triangular one's is
+// sum_k (1 - k/m) k = (m^2 - 1)/6 at integer m, i.e. 1 - 1/m^2. In 2D the model's own nodes
+// give the same sum: a bulk node's family of a built grid (PA-PDLAMMPS, m = 3: 0.869, the
+// 13% soft bond stiffness that m = 3 grids are known for).
+TEST(Quadrature, LatticeBondMomentMatchesClosedFormsAndABuiltFamily) {
+  for (double m : {2.0, 3.0, 5.0, 8.0}) {
+    EXPECT_NEAR(lattice_bond_moment(Quadrature::Subcell, 1, InfluenceShape::Constant, m), 1.0, 1e-12);
+    EXPECT_NEAR(lattice_bond_moment(Quadrature::Subcell, 1, InfluenceShape::Triangular, m),
+                1.0 - 1.0 / (m * m), 1e-12);
+  }
+  for (const char* rule : {"pa_pdlammps", "ipa_hybrid"}) {
+    const Model m = build_model(parse_deck(std::string(R"(
+model: {dimension: 2, plane: stress}
+material: {youngs_modulus: 1.0, density: 1.0}
+discretization: {spacing: 1.0, horizon: 3.0, quadrature: )") + rule + R"(, body: {box: {min: [0, 0], max: [15, 15]}}}
+damage: {enabled: false}
+solver: {end_time: 1.0, time_step: 0.1}
+)", "lattice"));
+    const NodeSet& ns = m.nodes;
+    std::size_t c = 0;  // the node nearest the centre
+    for (std::size_t i = 0; i < ns.size(); ++i)
+      if (std::hypot(ns.x[0][i] - 7.5, ns.x[1][i] - 7.5) < std::hypot(ns.x[0][c] - 7.5, ns.x[1][c] - 7.5)) c = i;
+    double sum = 0;
+    for (std::uint64_t b = m.bonds.begin(c); b < m.bonds.end(c); ++b)
+      sum += m.bonds.beta[b] / std::abs(m.bonds.inv_length[b]) * ns.volume[m.bonds.neighbor[b]];
+    const double continuum = 2 * 3.14159265358979323846 * 27.0 / 3.0;
+    const Quadrature q = std::string(rule) == "ipa_hybrid" ? Quadrature::IpaHybrid : Quadrature::PaPdlammps;
+    EXPECT_NEAR(lattice_bond_moment(q, 2, InfluenceShape::Constant, 3.0), sum / continuum, 1e-6) << rule;
+  }
+  EXPECT_NEAR(lattice_bond_moment(Quadrature::PaPdlammps, 2, InfluenceShape::Constant, 3.0), 0.86905, 5e-6);
 }

@@ -9,6 +9,7 @@
 
 #include "core/cell_grid.hpp"
 #include "core/geometry.hpp"
+#include "discretize/lattice_moment.hpp"
 #include "discretize/surface_correction.hpp"
 #include "material/micromodulus.hpp"
 
@@ -40,14 +41,30 @@ double breaking_stretch(const Model& m, double c0, double delta) {
              : sb;
 }
 
-void scale_material_to_horizon(Model& m, std::size_t i) {
+double micromodulus_factor(const Model& m, double m_level) {
+  if (!m.material.lattice_calibration) return 1.0;
+  return 1.0 / lattice_bond_moment(m.quadrature.rule, m.nodes.dim, m.material.shape, m_level);
+}
+
+std::vector<double> level_micromodulus_factors(const Model& m, const AdaptSpec& spec) {
+  std::vector<double> f(static_cast<std::size_t>(spec.max_level) + 1, 1.0);
+  if (m.material.lattice_calibration)
+    for (int l = 0; l <= spec.max_level; ++l)
+      f[static_cast<std::size_t>(l)] =
+          micromodulus_factor(m, level_horizon(m, spec, l) / (m.grid_spacing / std::ldexp(1.0, l)));
+  return f;
+}
+
+void scale_material_to_horizon(Model& m, std::size_t i, double factor) {
   const MaterialLaw& mat = m.material;
   NodeSet& ns = m.nodes;
   const double d = ns.horizon[i];
-  ns.micromodulus[i] =
-      micromodulus_c0(ns.dim, mat.plane, mat.shape, mat.bb_equivalent_E, d, mat.thickness);
+  const double c0 = micromodulus_c0(ns.dim, mat.plane, mat.shape, mat.bb_equivalent_E, d, mat.thickness);
+  ns.micromodulus[i] = c0 * factor;
+  // The breaking stretch is the analytic one: calibration changes the stiffness, not the strain
+  // at which a bond fails.
   if (mat.G0 > 0)
-    ns.critical_stretch[i] = breaking_stretch(m, ns.micromodulus[i], d);
+    ns.critical_stretch[i] = breaking_stretch(m, c0, d);
   else if (std::isfinite(mat.s0))
     // s0 given directly: keep the fracture energy it implies at the base horizon (s0 ~ delta^-1/2).
     ns.critical_stretch[i] = mat.s0 * std::sqrt(m.horizon / d);
@@ -131,12 +148,14 @@ RefineStats refine_nodes(Model& m, std::vector<std::uint32_t> parents, const Ada
   }
   first_kid[parents.size()] = kids.size();
 
+  const std::vector<double> level_factor = level_micromodulus_factors(m, spec);
   for (std::size_t pk = 0; pk < parents.size(); ++pk) {
     const std::uint32_t p = parents[pk];
     const std::size_t nk = first_kid[pk + 1] - first_kid[pk];
     if (nk == 0) continue;  // cannot happen for a node inside the body; keep the parent
     const double h = ns.spacing[p];
     const int level = ns.level[p] + 1;
+    const double factor = level_factor.at(static_cast<std::size_t>(level));
     for (std::size_t c = first_kid[pk]; c < first_kid[pk + 1]; ++c) {
       const Child& kid = kids[c];
       const std::size_t q = ns.append(kid.pos, ns.volume[p] / static_cast<double>(nk), 0.5 * h);
@@ -150,7 +169,7 @@ RefineStats refine_nodes(Model& m, std::vector<std::uint32_t> parents, const Ada
         ns.a[d][q] = kid.a[d];
       }
       ns.horizon[q] = level_horizon(m, spec, level);
-      scale_material_to_horizon(m, q);
+      scale_material_to_horizon(m, q, factor);
       ns.sync_current(q);
     }
     ns.flags[p] = static_cast<std::uint8_t>(ns.flags[p] & ~kActive);

@@ -40,8 +40,16 @@ double level_horizon(const Model& m, const AdaptSpec& spec, int level);
 double brittle_critical_stretch(const Model& m, double c0, double delta);
 double breaking_stretch(const Model& m, double c0, double delta);
 
-// Sets micromodulus and critical stretch of node i from its current horizon.
-void scale_material_to_horizon(Model& m, std::size_t i);
+// What multiplies the analytic micromodulus of a node whose level has m = delta/dx = `m_level`:
+// 1, or with lattice calibration the inverse of the quadrature's bulk lattice moment there.
+double micromodulus_factor(const Model& m, double m_level);
+
+// micromodulus_factor of every level 0 ... spec.max_level (all 1 without lattice calibration).
+std::vector<double> level_micromodulus_factors(const Model& m, const AdaptSpec& spec);
+
+// Sets micromodulus and critical stretch of node i from its current horizon; `factor` from
+// micromodulus_factor at the m of the node's level (an interface horizon keeps its level's).
+void scale_material_to_horizon(Model& m, std::size_t i, double factor = 1.0);
 
 // `inherit_boundary`: children of loaded or constrained parents join the parent's loads (same
 // force density, so the same total force) and prescribed motions (used by the initial refinement;

@@ -157,6 +157,7 @@ void finish_refinement(Model& m, const AdaptSpec& spec, const CrackMemory& memor
       if (ns.level[i] > 0) smin = std::min(smin, ns.spacing[i]);
     const CellGrid grid(D, {ns.x[0].data(), ns.x[1].data(), ns.x[2].data()}, near,
                         std::max(smin, 0.25 * hmax));
+    const std::vector<double> level_factor = level_micromodulus_factors(m, spec);
     // Rows are independent: each writes only its own horizon and material constants.
 #pragma omp parallel for schedule(dynamic, 64)
     for (std::size_t r = 0; r < rows.size(); ++r) {
@@ -173,7 +174,7 @@ void finish_refinement(Model& m, const AdaptSpec& spec, const CrackMemory& memor
       const double want = std::isfinite(dmin) ? std::max(base, mi * dmin) : base;
       if (want != ns.horizon[i]) {
         ns.horizon[i] = want;
-        scale_material_to_horizon(m, i);
+        scale_material_to_horizon(m, i, level_factor.at(static_cast<std::size_t>(ns.level[i])));
       }
     }
   }

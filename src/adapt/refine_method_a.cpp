@@ -87,6 +87,7 @@ RefineStats refine_nodes_method_a(Model& m, std::vector<std::uint32_t> parents,
   const CellGrid cgrid(D, {cx[0].data(), cx[1].data(), cx[2].data()}, cand.size(), hmin);
   std::vector<char> merged(cand.size(), 0);
   std::vector<std::uint32_t> created;
+  const std::vector<double> level_factor = level_micromodulus_factors(m, spec);
   for (std::size_t c = 0; c < cand.size(); ++c) {
     if (merged[c]) continue;
     Candidate rep = cand[c];
@@ -113,14 +114,14 @@ RefineStats refine_nodes_method_a(Model& m, std::vector<std::uint32_t> parents,
       ns.a[d][q] = rep.a[d] / n;
     }
     ns.horizon[q] = level_horizon(m, spec, ns.level[q]);
-    scale_material_to_horizon(m, q);
+    scale_material_to_horizon(m, q, level_factor.at(static_cast<std::size_t>(ns.level[q])));
     created.push_back(static_cast<std::uint32_t>(q));
   }
   for (std::uint32_t p : parents) {
     ns.level[p] = static_cast<std::int8_t>(ns.level[p] + 1);
     ns.spacing[p] *= 0.5;
     ns.horizon[p] = level_horizon(m, spec, ns.level[p]);
-    scale_material_to_horizon(m, p);
+    scale_material_to_horizon(m, p, level_factor.at(static_cast<std::size_t>(ns.level[p])));
   }
 
   // Volumes: fine cells clipped to the body box (unrotated lattices; a rotated lattice's cells are

@@ -14,6 +14,7 @@
 #include "run/static_run.hpp"
 #include "run/relaxation_run.hpp"
 #include "adapt/refine.hpp"
+#include "discretize/lattice_moment.hpp"
 #include "studies/registry.hpp"
 #include "input/deck.hpp"
 #include "run/interrupt.hpp"
@@ -57,7 +58,10 @@ int check(const std::string& path, const std::vector<std::string>& overrides,
   if (dk.dim < 3) fmt::print("thickness/area  {:.6g}\n", dk.thickness);
   fmt::print("material        {}: E = {:.6g} Pa, rho = {:.6g} kg/m^3, nu = {:.6g}{}\n",
              mat.name, mat.E, mat.rho, mat.nu, m.formulation.bond_based() ? " (fixed by PMB)" : "");
-  fmt::print("micromodulus    {} shape, c0 = {:.6e}\n", to_string(mat.shape), mat.c0);
+  fmt::print("micromodulus    {} shape, c0 = {:.6e}{}\n", to_string(mat.shape), mat.c0,
+             mat.lattice_calibration
+                 ? fmt::format(" (nodes: x {:.5f}, lattice calibration)", m.nodes.micromodulus[0] / mat.c0)
+                 : std::string());
   if (mat.G0 > 0) fmt::print("fracture energy G0 = {:.6g} J/m^2\n", mat.G0);
   if (m.formulation.keeps_bond_history())
     fmt::print("{}    {:.6g} Pa: onset stretch {:.6e}\n", m.formulation.law->stress_key, dk.law_stress,
@@ -135,9 +139,24 @@ int check(const std::string& path, const std::vector<std::string>& overrides,
                a.method == NodeGeneration::A ? "A" : "B", a.max_level,
                a.scaling == HorizonScaling::Delta ? "delta" : a.scaling == HorizonScaling::M ? "m" : "delta-m",
                trig, a.start_time, a.interface_horizon ? ", interface-horizon correction" : "");
-    for (int l = 1; l <= a.max_level; ++l)
-      fmt::print("  level {}       spacing {:.6g} m, horizon {:.6g} m\n", l,
-                 m.grid_spacing / std::ldexp(1.0, l), level_horizon(m, a, l));
+    // The quadrature's bulk bond stiffness at each level's m: levels that differ in it meet with
+    // an impedance jump (a wave reflects) unless the micromoduli are calibrated to it.
+    auto stiffness = [&](int l) {
+      return lattice_bond_moment(dk.quadrature, dk.dim, dk.shape,
+                                 level_horizon(m, a, l) / (m.grid_spacing / std::ldexp(1.0, l)));
+    };
+    double lo = stiffness(0), hi = lo;
+    for (int l = 1; l <= a.max_level; ++l) {
+      const double k = stiffness(l);
+      lo = std::min(lo, k), hi = std::max(hi, k);
+      fmt::print("  level {}       spacing {:.6g} m, horizon {:.6g} m, quadrature bond stiffness {:.4f}{}\n", l,
+                 m.grid_spacing / std::ldexp(1.0, l), level_horizon(m, a, l), k,
+                 m.formulation.bond_based() ? "" : " (LPS normalizes by it)");
+    }
+    if (m.formulation.bond_based() && !mat.lattice_calibration && hi > 1.01 * lo)
+      fmt::print("note            the levels' quadrature bond stiffness differs by {:.1f}% (level 0: "
+                 "{:.4f}): waves reflect at level interfaces; discretization.micromodulus_calibration: "
+                 "lattice matches them\n", 100 * (hi / lo - 1), stiffness(0));
   }
   if (dk.adapt.enabled || !dk.adapt.initial.empty()) {
     // What the initial zones refined already (model built with them): nodes and body volume.

@@ -88,6 +88,7 @@ struct Deck {
   double horizon = 0.0;         // delta
   Quadrature quadrature = Quadrature::PaPdlammps;
   SurfaceCorrection surface_correction = SurfaceCorrection::None;
+  bool lattice_calibration = false;  // micromodulus_calibration: lattice
   // cracks, loads, boundary conditions, initial fields
   std::vector<PreCrack> cracks;
   std::vector<LoadSpec> loads;

@@ -119,6 +119,8 @@ void parse_discretization_and_cracks(Section& top, Deck& dk) {
     dk.surface_correction = sc == "moments"                   ? SurfaceCorrection::Moments
                             : sc == "true" || sc == "energy" ? SurfaceCorrection::Energy
                                                               : SurfaceCorrection::None;
+    dk.lattice_calibration =
+        s.choice("micromodulus_calibration", {"analytic", "lattice"}, "analytic") == "lattice";
     dk.quadrature = q == "full"         ? Quadrature::Full
                     : q == "subcell"    ? Quadrature::Subcell
                     : q == "ipa_hybrid" ? Quadrature::IpaHybrid

@@ -90,6 +90,11 @@ void parse_solver(Section& top, Deck& dk) {
                              "or lps); the dual-horizon kernels do not re-check bonds"
                            : "the refinement overlay re-checks brittle bonds (pmb or lps); "
                              "formulation " + dk.formulation + " breaks bonds by its own history");
+  if (dk.lattice_calibration && !f.bond_based())
+    top.optional_section("discretization")
+        ->fail("micromodulus_calibration",
+               "lattice calibrates bond-based micromoduli; formulation " + dk.formulation +
+                   " normalizes by its discrete weighted volume already (use analytic)");
   if (dk.thermal_strain != 0.0 &&
       (dk.solver != Deck::SolverType::Explicit || !f.takes_thermal_strain()))
     top.fail("material", "thermal_strain is supported by the explicit pmb solver with "

@@ -54,6 +54,10 @@ struct MaterialLaw {
   // Young's modulus of the bond-based material with the same P-wave modulus: its micromodulus
   // (stored per node) drives the stable time step and the relaxation masses for both models.
   double bb_equivalent_E = 0;
+  // Micromoduli divided by the quadrature's bulk lattice moment at each level's m
+  // (discretization.micromodulus_calibration: lattice), so that every level has the bond
+  // stiffness of the continuum and levels of different m meet without an impedance jump.
+  bool lattice_calibration = false;
 };
 
 struct Model {

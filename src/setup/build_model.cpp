@@ -78,10 +78,13 @@ Model build_model(const Deck& dk) {
     mat.s0 = INFINITY;
   }
   mat.wave_speed = std::sqrt(p_wave_modulus(dk.dim, dk.plane, dk.E, mat.nu) / dk.rho);
+  mat.lattice_calibration = dk.lattice_calibration;
+  m.quadrature.rule = dk.quadrature;
+  const double c0_nodes = mat.c0 * micromodulus_factor(m, dk.horizon_factor);
   for (std::size_t i = 0; i < ns.size(); ++i) {
     ns.horizon[i] = dk.horizon;
     ns.density[i] = dk.rho;
-    ns.micromodulus[i] = mat.c0;
+    ns.micromodulus[i] = c0_nodes;
     ns.critical_stretch[i] = mat.s0;
   }
   m.damage_enabled = dk.damage;

@@ -16,8 +16,12 @@ struct DensityJumpReflection {
 // `density_factor` 1 (uniform coarse: the floor of the measure), 2 or 4; `shape` "constant" or
 // "triangular"; `coarse_spacing` outside the middle third (0.2: the paper's 1,000 nodes on each
 // outer third); `time_step` of the Velocity-Verlet integration.
+// `dual_horizon`: bond_pairing dual_horizon (each bond pulls both ends alike: reciprocal across
+// the jump); `lattice`: micromodulus_calibration: lattice (both grids get the continuum's bond
+// stiffness).
 DensityJumpReflection bobaru_density_jump(int density_factor, const std::string& shape,
-                                          double coarse_spacing = 0.2, double time_step = 0.02);
+                                          double coarse_spacing = 0.2, double time_step = 0.02,
+                                          bool dual_horizon = false, bool lattice = false);
 
 // `quick`: Table III's grids only, without the finer ones that show the reflection vanish.
 int run_bobaru_density_jump_study(const std::string& out_dir, bool quick = false);

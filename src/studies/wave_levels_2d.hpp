@@ -27,6 +27,8 @@ struct WaveLevelsRow {
 };
 
 std::vector<WaveLevelsRow> wave_levels_rows();
+// One delta-m case against its own uniform run (calibrated alike): Delta u in %.
+double wave_levels_delta_m_reflection(int level, bool dual_horizon, bool lattice);
 int run_wave_levels_study(const std::string& out_dir);
 
 }  // namespace periadapt
