@@ -19,8 +19,9 @@ struct WaveArrival {
 // density reaches 75% of its maximum, within 6 horizons, coarsening behind the pulse): `nodes`
 // nodes on [0, 450], horizon `delta`.
 // `scaling` (adaptive only): the AGRS horizon scaling of the refined zone, "delta" or "m".
+// `lattice`: micromodulus_calibration: lattice (the quadrature's bond stiffness divided out).
 WaveArrival bobaru_wave_arrival(int nodes, double delta, bool adaptive = false,
-                                const std::string& scaling = "delta");
+                                const std::string& scaling = "delta", bool lattice = false);
 
 // u at x of a 1D bar: linear interpolation between the active nodes around x.
 double bar_displacement_at(const NodeSet& nodes, double x);
