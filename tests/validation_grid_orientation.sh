@@ -4,9 +4,10 @@
 # the uniform grid it stands for (the acceptance); the uniform m = 3 grid deviates by
 # 5.85 deg (tests/validation_grid_orientation_uniform.sh). Two decks (edge crack, 0.8 MPa, 560 us):
 #   examples/grid_orientation_adaptive.yaml (m-convergence, 2 mm m = 3 -> 1 mm m = 6; uniform
-#     reference 1 mm): measured 0.93 deg, 19,666 of 62,492 nodes;
+#     reference 1 mm): measured 0.03 deg, 19,705 of 62,492 nodes (0.93 deg before the exact-area
+#     search counted the coarse cells next to fine nodes, 650bb36);
 #   examples/grid_orientation_adaptive_dm.yaml (delta-m, 2 mm m = 3 -> 0.5 mm m = 6; uniform
-#     reference 0.5 mm): measured 2.00 deg, 27,858 of 250,008 nodes.
+#     reference 0.5 mm): measured 1.15 deg, 28,378 of 250,008 nodes (2.43 deg before 650bb36).
 # Usage: validation_grid_orientation.sh PERIADAPT DECK FINE_SPACING
 set -u
 bin="$1"; deck="$2"; fine="$3"; out=$(mktemp -d)
