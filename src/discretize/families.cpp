@@ -57,7 +57,8 @@ class FamilySearch {
                const std::vector<std::uint32_t>& rows)
       : nodes_(nodes), quad_(quad), cell_reach_(largest_cell(nodes)), grid_(nodes.dim,
                                           {nodes.x[0].data(), nodes.x[1].data(), nodes.x[2].data()},
-                                          candidates(nodes, quad, rows), cell_size(nodes, quad, rows)) {}
+                                          candidates(nodes, quad, rows, cell_reach_),
+                                          cell_size(nodes, quad, rows, cell_reach_)) {}
 
   // Only the given candidates can be neighbours (ids ascending), in cells of `cell`.
   FamilySearch(const NodeSet& nodes, const QuadratureSpec& quad,
@@ -125,10 +126,7 @@ class FamilySearch {
   // The largest search radius of the rows.
   static double search_radius(const NodeSet& nodes, const QuadratureSpec& quad,
                               const std::vector<std::uint32_t>& rows) {
-    double h = 0;
-    for (std::uint32_t i : rows) h = std::max(h, nodes.horizon[i]);
-    const double r = quadrature_search_radius(quad.rule, nodes.dim, h, largest_cell(nodes));
-    return std::max(r * (1 + 1e-9), 1e-300);
+    return search_radius(nodes, quad, rows, largest_cell(nodes));
   }
 
  private:
@@ -138,6 +136,14 @@ class FamilySearch {
     for (std::size_t i = 0; i < nodes.size(); ++i)
       if (nodes.flags[i] & kActive) dx = std::max(dx, nodes.spacing[i]);
     return dx;
+  }
+  // `dx`: largest_cell(nodes), found once per search.
+  static double search_radius(const NodeSet& nodes, const QuadratureSpec& quad,
+                              const std::vector<std::uint32_t>& rows, double dx) {
+    double h = 0;
+    for (std::uint32_t i : rows) h = std::max(h, nodes.horizon[i]);
+    const double r = quadrature_search_radius(quad.rule, nodes.dim, h, dx);
+    return std::max(r * (1 + 1e-9), 1e-300);
   }
   static double search_radius(const NodeSet& nodes, const QuadratureSpec& quad) {
     double hmax = 0, dxmax = 0;
@@ -150,16 +156,15 @@ class FamilySearch {
   // The smallest search radius of the rows, but at least a quarter of the largest (a query then
   // spans at most 9 cells per axis).
   static double cell_size(const NodeSet& nodes, const QuadratureSpec& quad,
-                          const std::vector<std::uint32_t>& rows) {
+                          const std::vector<std::uint32_t>& rows, double dx) {
     double r = INFINITY;
-    const double dx = largest_cell(nodes);
     for (std::uint32_t i : rows)
       r = std::min(r, quadrature_search_radius(quad.rule, nodes.dim, nodes.horizon[i], dx));
-    return std::max(r, 0.25 * search_radius(nodes, quad, rows));
+    return std::max(r, 0.25 * search_radius(nodes, quad, rows, dx));
   }
   static std::vector<std::uint32_t> candidates(const NodeSet& nodes, const QuadratureSpec& quad,
-                                               const std::vector<std::uint32_t>& rows) {
-    return active_nodes_near(nodes, rows, search_radius(nodes, quad, rows));
+                                               const std::vector<std::uint32_t>& rows, double dx) {
+    return active_nodes_near(nodes, rows, search_radius(nodes, quad, rows, dx));
   }
   const NodeSet& nodes_;
   const QuadratureSpec& quad_;
