@@ -436,7 +436,7 @@ TEST(Dynamics, StableStepOverListedNodesIsTheSmallestOfTheirBounds) {
   EXPECT_EQ(listed.node, all.node);
   const StableStep c = stable_time_step(m, coarse);
   EXPECT_GT(c.dt, 1.5 * all.dt);  // the coarse rows are not the limiting ones
-  EXPECT_EQ(stable_time_step(m, {c.node, all.node}).dt, all.dt);
+  EXPECT_EQ(stable_time_step(m, {static_cast<std::uint32_t>(c.node), static_cast<std::uint32_t>(all.node)}).dt, all.dt);
 }
 
 #include "studies/bobaru_density_jump.hpp"

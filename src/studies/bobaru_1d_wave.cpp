@@ -63,7 +63,8 @@ WaveArrival bobaru_wave_arrival(int nodes, double delta, bool adaptive, const st
   vv.initialize();
   std::unique_ptr<Adaptor> ad;
   if (adaptive) ad = std::make_unique<Adaptor>(m, vv, dk.adapt);
-  double best = -1, t_best = 0, prev = 0, prev2 = 0, node_sum = 0;
+  double node_sum = 0;
+  PeakTracker peak;
   WaveArrival a;
   a.min_nodes = m.nodes.size();
   for (long s = 1; s <= ts.steps; ++s) {
@@ -74,19 +75,10 @@ WaveArrival bobaru_wave_arrival(int nodes, double delta, bool adaptive, const st
     node_sum += static_cast<double>(active);
     a.min_nodes = std::min(a.min_nodes, active);
     a.max_nodes = std::max(a.max_nodes, active);
-    const double u = bar_displacement_at(m.nodes, 400.0);
-    if (prev > best && prev >= u && prev >= prev2) {
-      // prev is a local maximum: parabola through (t-2dt, prev2), (t-dt, prev), (t, u).
-      const double den = prev2 - 2 * prev + u;
-      const double off = den != 0 ? 0.5 * (prev2 - u) / den : 0.0;
-      best = prev;
-      t_best = vv.time() - ts.dt + off * ts.dt;
-      a.amplitude = prev - 0.25 * (prev2 - u) * off;
-      a.time = t_best;
-    }
-    prev2 = prev;
-    prev = u;
+    peak.sample(vv.time(), bar_displacement_at(m.nodes, 400.0), ts.dt);
   }
+  a.time = peak.time;
+  a.amplitude = peak.value;
   a.mean_nodes = node_sum / static_cast<double>(ts.steps);
   return a;
 }

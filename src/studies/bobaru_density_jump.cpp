@@ -51,23 +51,16 @@ DensityJumpReflection bobaru_density_jump(int density_factor, const std::string&
   vv.initialize();
   // The main pulse has passed x = 150 long before t = 200 (width ~10); the reflection from
   // x = 100 runs left and returns only after t = 350.
-  double best = -1, prev = 0, prev2 = 0;
-  DensityJumpReflection r;
+  PeakTracker peak;
+  peak.magnitude = true;
   const long steps = std::lround(dk.end_time / time_step);
   for (long s = 1; s <= steps; ++s) {
     vv.step();
-    const double u = bar_displacement_at(m.nodes, 150.0);
-    if (vv.time() >= 200.0 && std::abs(prev) > best && std::abs(prev) >= std::abs(u) &&
-        std::abs(prev) >= std::abs(prev2)) {
-      const double den = prev2 - 2 * prev + u;
-      const double off = den != 0 ? 0.5 * (prev2 - u) / den : 0.0;
-      best = std::abs(prev);
-      r.time = vv.time() - time_step + off * time_step;
-      r.amplitude = prev - 0.25 * (prev2 - u) * off;
-    }
-    prev2 = prev;
-    prev = u;
+    peak.sample(vv.time(), bar_displacement_at(m.nodes, 150.0), time_step, vv.time() >= 200.0);
   }
+  DensityJumpReflection r;
+  r.time = peak.time;
+  r.amplitude = peak.value;
   // The long pulse sees each grid as a bar of modulus E_eff = 1/2 sum_j c(xi) |xi| V_j beta_j
   // (the quadrature of the calibration integral): nodes in the middle of each region.
   auto e_eff = [&](double x) {
