@@ -301,7 +301,6 @@ int main(int argc, char** argv) {
     }
     install_interrupt_handlers();
     RunResult r = run_simulation(dk, ro);
-    const auto& s = r.summary;
     if (r.interrupted) {
       fmt::print(stderr,
                  "interrupted by signal {} after step {}: history, snapshots so far, "
@@ -310,37 +309,33 @@ int main(int argc, char** argv) {
                  r.interrupted, r.steps_done, run_dir, deck, run_dir);
       return 128 + r.interrupted;
     }
-    if (r.diverged) {
-      const auto& d = s["divergence"];
+    if (r.divergence) {
+      const DivergenceReport& d = *r.divergence;
       fmt::print(stderr,
                  "error: the simulation diverged at step {} (t = {:.4e} s): {} at node {} "
-                 "(x = {}). Outputs up to the last good snapshot are kept in {}. Lower "
+                 "(x = [{},{},{}]). Outputs up to the last good snapshot are kept in {}. Lower "
                  "solver.time_step or check loads and boundary conditions.\n",
-                 d["step"].get<long>(), d["time_s"].get<double>(), d["reason"].get<std::string>(),
-                 d["node"].get<std::size_t>(), d["position"].dump(),
+                 d.step, d.time, d.reason, d.node, d.position[0], d.position[1], d.position[2],
                  ro.out_dir ? *ro.out_dir : dk.output.directory);
       return 3;
     }
-    fmt::print("done: {} steps in {:.2f} s wall ({:.3g} bond evaluations/s{})\n",
-               s["steps"].get<long>(), s["wall_time_s"].get<double>(),
-               s["bond_evals_per_s"].get<double>(),
-               s.contains("multirate_slow_nodes")
+    fmt::print("done: {} steps in {:.2f} s wall ({:.3g} bond evaluations/s{})\n", r.steps,
+               r.wall_s, r.bond_evals_per_s,
+               r.multirate_slow_nodes
                    ? fmt::format("; {} nodes on a longer step than dt at the end",
-                                 s["multirate_slow_nodes"].get<std::size_t>())
+                                 *r.multirate_slow_nodes)
                    : std::string());
-    if (s.contains("crack")) {
-      const auto& c = s["crack"];
-      auto us = [](const nlohmann::json& v) {
-        return v.is_null() ? std::string("-") : fmt::format("{:.2f} us", v.get<double>() * 1e6);
+    if (r.crack) {
+      auto us = [](const std::optional<double>& v) {
+        return v ? fmt::format("{:.2f} us", *v * 1e6) : std::string("-");
       };
       fmt::print("crack: starts {} (initiation {}), branching {}, mean speed {:.0f} m/s, max speed "
                  "{:.0f} m/s\n",
-                 us(c["first_advance_time_s"]), us(c["initiation_time_s"]), us(c["branching_time_s"]),
-                 c["mean_speed_m_s"].get<double>(), c["max_speed_m_s"].get<double>());
+                 us(r.crack->first_advance_s), us(r.crack->initiation_s),
+                 us(r.crack->branching_s), r.crack->mean_speed, r.crack->max_speed);
     }
-    if (s.contains("outputs"))
-      fmt::print("outputs: {} , {} , summary.json\n", s["outputs"]["pvd"].get<std::string>(),
-                 s["outputs"]["history"].get<std::string>());
+    if (!r.history_path.empty())
+      fmt::print("outputs: {} , {} , summary.json\n", r.pvd_path, r.history_path);
     return 0;
   } catch (const DeckError& e) {
     fmt::print(stderr, "error: {}\n", e.what());

@@ -66,6 +66,23 @@ DeckBuilder& DeckBuilder::set(std::string_view path, const std::vector<std::stri
   at(path) = list;
   return *this;
 }
+DeckBuilder& DeckBuilder::set(std::string_view path, const std::vector<std::vector<double>>& points) {
+  YAML::Node list(YAML::NodeType::Sequence);
+  for (const auto& p : points) {
+    YAML::Node point(YAML::NodeType::Sequence);
+    for (double v : p) point.push_back(number(v));
+    list.push_back(point);
+  }
+  at(path) = list;
+  return *this;
+}
+DeckBuilder& DeckBuilder::set(std::string_view path,
+                              const std::vector<std::optional<std::string>>& values) {
+  YAML::Node list(YAML::NodeType::Sequence);
+  for (const auto& v : values) list.push_back(v ? YAML::Node(*v) : YAML::Node(YAML::NodeType::Null));
+  at(path) = list;
+  return *this;
+}
 DeckBuilder& DeckBuilder::set(std::string_view path, const DeckBuilder& tree) {
   at(path) = YAML::Clone(tree.root_);
   return *this;

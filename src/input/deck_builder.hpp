@@ -9,6 +9,7 @@
 //                 .append("loads", DeckBuilder().set("name", "top").set("type", "traction"))
 //                 .build();
 #include <initializer_list>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -30,6 +31,10 @@ class DeckBuilder {
   DeckBuilder& set(std::string_view path, std::initializer_list<double> values);
   DeckBuilder& set(std::string_view path, const std::vector<double>& values);
   DeckBuilder& set(std::string_view path, const std::vector<std::string>& values);
+  // A list of points (a crack segment, a polygon).
+  DeckBuilder& set(std::string_view path, const std::vector<std::vector<double>>& points);
+  // A list whose empty entries are YAML nulls (a component left free: `velocity: [expr, null]`).
+  DeckBuilder& set(std::string_view path, const std::vector<std::optional<std::string>>& values);
   // A sub-tree (a region, a section) built on its own.
   DeckBuilder& set(std::string_view path, const DeckBuilder& tree);
   // Appends an entry to the list at `path` (loads, boundary_conditions, cracks, damage.no_fail).

@@ -1,12 +1,16 @@
 #pragma once
 // One explicit run from a validated deck: builds the model, integrates, observes, writes.
+#include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "input/deck.hpp"
 #include "model/model.hpp"
+#include "run/observer.hpp"
+#include "run/run_result.hpp"
 
 namespace periadapt {
 
@@ -16,15 +20,11 @@ struct RunOptions {
   bool quiet = false;
   // Continue from this checkpoint (a checkpoint.bin, or the folder holding it).
   std::optional<std::string> restart;
+  // Outputs of the caller's own (a study's probe, a test's recorder): they see every step and
+  // event after the built-in observers, and add to the summary before it is written.
+  std::vector<std::shared_ptr<RunObserver>> observers;
 };
 
-struct RunResult {
-  bool diverged = false;
-  int interrupted = 0;  // the signal that stopped the run (SIGINT, SIGTERM), 0 if none
-  long steps_done = 0;  // with `interrupted`: the last step taken
-  nlohmann::json summary;
-  Model model;  // final state
-};
 
 // Chosen time step and its stability bound; throws DeckError when the deck's time step exceeds
 // the bound without solver.allow_unstable_time_step.

@@ -1,0 +1,31 @@
+#pragma once
+// history.csv: energies, damage, crack tip, node and bond counts, reactions and applied forces,
+// named-region sums, at every output.history_every steps; the load-displacement picture at the
+// end, and the summary's energies.
+#include "io/atomic_output.hpp"
+#include "run/observer.hpp"
+
+namespace periadapt {
+
+class CrackTipObserver;
+
+class HistoryObserver : public RunObserver {
+ public:
+  // `tip`: where the crack-tip columns come from (null: the run tracks no tip).
+  HistoryObserver(RunView& view, const CrackTipObserver* tip);
+  void on_start(RunView& view) override;
+  bool wants_energy_density(long step) const override;
+  void on_step(RunView& view, long step, bool closing) override;
+  void save(ArchiveWriter& w) override;
+  void restore(ArchiveReader& r, RunView& view) override;
+  void finish(RunView& view, RunResult& result) override;
+
+ private:
+  const CrackTipObserver* tip_;
+  StreamedOutput out_;
+  long every_, total_;
+  double K_ = 0, U_ = 0, damage_sum_ = 0;
+  std::size_t damaged_nodes_ = 0;
+};
+
+}  // namespace periadapt

@@ -1,0 +1,22 @@
+#pragma once
+// Damage pictures (PNG) at output.png_times and at the end.
+#include <set>
+
+#include "run/observer.hpp"
+
+namespace periadapt {
+
+class PictureObserver : public RunObserver {
+ public:
+  explicit PictureObserver(const RunView& view, double dt);
+  void on_step(RunView& view, long step, bool closing) override;
+  void save(ArchiveWriter& w) override;
+  void restore(ArchiveReader& r, RunView& view) override;
+  void finish(RunView& view, RunResult& result) override;
+
+ private:
+  std::set<long> steps_;
+  std::vector<std::string> written_;
+};
+
+}  // namespace periadapt

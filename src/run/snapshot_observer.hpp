@@ -1,0 +1,26 @@
+#pragma once
+// VTU snapshots under one PVD, output.vtu_count of them evenly over the run (and one more when an
+// interrupted run stops between them).
+#include <memory>
+#include <set>
+
+#include "io/vtu_writer.hpp"
+#include "run/observer.hpp"
+
+namespace periadapt {
+
+class SnapshotObserver : public RunObserver {
+ public:
+  explicit SnapshotObserver(const RunView& view);
+  bool wants_energy_density(long step) const override;
+  void on_step(RunView& view, long step, bool closing) override;
+  void save(ArchiveWriter& w) override;
+  void restore(ArchiveReader& r, RunView& view) override;
+  void finish(RunView& view, RunResult& result) override;
+
+ private:
+  std::set<long> steps_;
+  std::unique_ptr<VtuSeries> vtu_;
+};
+
+}  // namespace periadapt

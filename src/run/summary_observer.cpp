@@ -1,0 +1,129 @@
+#include "run/summary_observer.hpp"
+
+#include <omp.h>
+
+#include "analysis/energy.hpp"
+#include "core/process_memory.hpp"
+#include "io/atomic_output.hpp"
+#include "run/checkpoint_file.hpp"
+#include "run/output_regions.hpp"
+#include "solver/velocity_verlet.hpp"
+
+namespace periadapt {
+
+SummaryObserver::SummaryObserver(const RunView& view) : initial_nodes_(view.model.nodes.size()) {}
+
+void SummaryObserver::save(ArchiveWriter& w) {
+  w.tag("SUMM");
+  w.put(std::uint64_t{initial_nodes_});
+}
+
+void SummaryObserver::restore(ArchiveReader& r, RunView&) {
+  r.tag("SUMM");
+  initial_nodes_ = r.get<std::uint64_t>();
+}
+
+void SummaryObserver::finish(RunView& view, RunResult& res) {
+  nlohmann::json& j = res.summary;
+  const Model& m = view.model;
+  const NodeSet& ns = m.nodes;
+  const VelocityVerlet& vv = view.vv;
+  const RunTotals& tot = view.totals;
+  j["deck"] = view.deck.file;
+  j["status"] = tot.status;
+  if (tot.restarted) j["restarted_from_step"] = tot.restarted_from_step;
+  if (tot.interrupted_by) {
+    if (view.write_files) j["checkpoint"] = view.dir + "/" + kCheckpointName;
+    j["interrupted_by_signal"] = tot.interrupted_by;
+    j["steps_done"] = tot.steps_done;
+  }
+  j["dimension"] = ns.dim;
+  std::size_t active = 0;
+  double phi = 0;
+  for (std::size_t i = 0; i < ns.size(); ++i)
+    if (ns.flags[i] & kActive) {
+      ++active;
+      phi += ns.damage(i);
+    }
+  j["nodes"]["initial"] = initial_nodes_;
+  j["nodes"]["final"] = active;
+  j["nodes"]["slots"] = ns.size();
+  j["bonds"] = m.bonds.num_bonds();
+  j["precrack_bonds"] = m.precrack_bonds;
+  j["broken_bonds"] = vv.broken_bonds();
+  if (!view.deck.output.regions.empty()) {
+    std::vector<double> W;
+    strain_energy(m, W);
+    j["regions"] = regions_json(view.deck.output.regions, ns, W, ns.f);
+  }
+  j["damage_sum"] = phi;
+  j["steps"] = vv.step_count();
+  j["dt"] = tot.dt;
+  j["dt_stable"] = tot.dt_stable;
+  j["end_time_s"] = vv.time();
+  j["threads"] = omp_get_max_threads();
+  j["setup_time_s"] = tot.setup_s;
+  j["solver_time_s"] = tot.solver_s;
+  // Inside the run loop, besides the solver: sampling the history (energies, damage, crack tip)
+  // and, part of it, writing the VTU snapshots and PNG pictures.
+  j["sampling_time_s"] = tot.sampling_s;
+  j["snapshot_output_time_s"] = view.output_seconds;
+  // Multi-rate stepping: how many active nodes ended on a longer step than dt.
+  if (vv.multirate()) {
+    res.multirate_slow_nodes = vv.slow_nodes();
+    j["multirate_slow_nodes"] = *res.multirate_slow_nodes;
+  }
+  res.steps = vv.step_count();
+  res.wall_s = tot.wall_s;
+  res.bond_evals_per_s = tot.solver_s > 0 ? vv.bond_evaluations() / tot.solver_s : 0.0;
+  j["wall_time_s"] = tot.wall_s;
+  j["bond_evals_per_s"] = res.bond_evals_per_s;
+  j["bond_evaluations"] = vv.bond_evaluations();
+  {
+    // Resident memory of the model arrays, per bond and per node, and the process peak (which
+    // also holds the transient family-build buffers and output buffers).
+    const double nn = static_cast<double>(ns.size());
+    const std::size_t per_node = model_bytes_per_node(m);
+    const double step_s = vv.step_count() > 0 ? tot.solver_s / vv.step_count() : 0.0;
+    j["memory"] = {{"bytes_per_bond", BondFamilies::bytes_per_bond()},
+                   {"bytes_per_node", per_node},
+                   {"model_bytes", static_cast<double>(m.bonds.bond_array_bytes()) +
+                                       nn * static_cast<double>(per_node)},
+                   {"peak_rss_bytes", peak_rss_bytes()}};
+    j["family_build_time_s"] = m.family_build_seconds;
+    j["family_build_in_steps"] = step_s > 0 ? m.family_build_seconds / step_s : 0.0;
+  }
+  j["material"] = {{"E", m.material.E},           {"nu", m.material.nu},
+                   {"rho", m.material.rho},       {"G0", m.material.G0},
+                   {"c0", m.material.c0},         {"s0", m.material.s0},
+                   {"micromodulus", to_string(m.material.shape)},
+                   {"wave_speed_m_s", m.material.wave_speed}};
+  if (m.formulation.keeps_bond_history()) {
+    j["material"]["formulation"] = m.formulation.name();
+    j["material"]["onset_stretch"] = m.material.onset_stretch;
+  }
+  j["grid"] = {{"spacing", m.grid_spacing}, {"horizon", m.horizon}};
+  if (tot.status == "diverged") {
+    const DivergenceError& e = vv.divergence();
+    res.divergence = DivergenceReport{
+        e.node, e.step, e.time, {ns.x[0][e.node], ns.x[1][e.node], ns.x[2][e.node]}, e.what};
+    j["divergence"] = {{"node", e.node},
+                       {"step", e.step},
+                       {"time_s", e.time},
+                       {"position", {ns.x[0][e.node], ns.x[1][e.node], ns.x[2][e.node]}},
+                       {"reason", e.what}};
+  }
+  if (m.pdro.enabled) {
+    const double checks = static_cast<double>(m.pdro.counters->checks.load());
+    j["overlay"] = {{"n", m.pdro.n},
+                    {"checks", m.pdro.counters->checks.load()},
+                    {"breaks", m.pdro.counters->breaks.load()},
+                    {"checks_per_bond_evaluation",
+                     vv.bond_evaluations() > 0 ? checks / vv.bond_evaluations() : 0.0}};
+  }
+  if (view.write_files)
+    write_file_atomically(view.dir + "/summary.json",
+                          [&](std::ostream& o) { o << j.dump(2) << "\n"; });
+}
+
+}  // namespace periadapt

@@ -1,0 +1,20 @@
+#pragma once
+// summary.json: the run's status, counts, time step, timings, memory, material and grid, with
+// what the other observers added to it; written last, atomically.
+#include "run/observer.hpp"
+
+namespace periadapt {
+
+class SummaryObserver : public RunObserver {
+ public:
+  explicit SummaryObserver(const RunView& view);
+  void save(ArchiveWriter& w) override;
+  void restore(ArchiveReader& r, RunView& view) override;
+  // Keep it last in the observer list: it writes the file the others filled in.
+  void finish(RunView& view, RunResult& result) override;
+
+ private:
+  std::size_t initial_nodes_;
+};
+
+}  // namespace periadapt
