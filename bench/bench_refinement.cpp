@@ -14,7 +14,7 @@
 
 #include "adapt/refine.hpp"
 #include "run/simulation.hpp"
-#include "input/deck.hpp"
+#include "input/deck_builder.hpp"
 #include "setup/build_model.hpp"
 #include "solver/velocity_verlet.hpp"
 
@@ -23,19 +23,27 @@ using clk = std::chrono::steady_clock;
 
 namespace {
 
-std::string block_deck(int n, double h) {
+Deck block_deck(int n, double h, const std::string& name) {
   const double L = n * h;
-  return fmt::format(
-      "model: {{dimension: 3}}\n"
-      "material: {{youngs_modulus: 72.0e9, density: 2440.0, fracture_energy: 135.0}}\n"
-      "discretization: {{spacing: {}, horizon_factor: 3.0, body: {{box: {{min: [0, 0, 0], "
-      "max: [{}, {}, {}]}}}}}}\n"
-      "initial_conditions: {{velocity: ['100*(x-{})', '100*(y-{})', '100*(z-{})']}}\n"
-      "solver: {{time_step: 2.0e-8, steps: 10}}\n"
+  std::vector<std::string> v;
+  for (const char* x : {"x", "y", "z"}) v.push_back(fmt::format("100*({}-{})", x, 0.5 * L));
+  return DeckBuilder()
+      .set("model.dimension", 3)
+      .set("material.youngs_modulus", 72.0e9)
+      .set("material.density", 2440.0)
+      .set("material.fracture_energy", 135.0)
+      .set("discretization.spacing", h)
+      .set("discretization.horizon_factor", 3.0)
+      .set("discretization.body.box.min", {0.0, 0.0, 0.0})
+      .set("discretization.body.box.max", {L, L, L})
+      .set("initial_conditions.velocity", v)
+      .set("solver.time_step", 2.0e-8)
+      .set("solver.steps", 10)
       // An adaptive model (built with room for refined rows); the events below are driven
       // directly, not by this trigger.
-      "adapt: {{max_level: 1, energy_trigger: 0.7}}\n",
-      h, L, L, L, 0.5 * L, 0.5 * L, 0.5 * L);
+      .set("adapt.max_level", 1)
+      .set("adapt.energy_trigger", 0.7)
+      .build(name);
 }
 
 double seconds_per_step(Model& m, int steps) {
@@ -56,7 +64,7 @@ int main(int argc, char** argv) {
   spec.enabled = true;
 
   // 1. One event adding ~1% of the nodes (a corner cube of 1/8 of 1% parents -> 8 children each).
-  Model m = build_model(parse_deck(block_deck(n, h), "block"));
+  Model m = build_model(block_deck(n, h, "block"));
   const double step = seconds_per_step(m, 5);
   const std::size_t want = m.nodes.size() / 100 / 7;  // parents: each adds 7 net nodes
   std::vector<std::uint32_t> parents;
@@ -78,7 +86,7 @@ int main(int argc, char** argv) {
   // also touches the spare family storage for the first time; later ones show what an event costs
   // once running. Compare across N: the steady cost should follow the region, not the model.
   {
-    Model ms = build_model(parse_deck(block_deck(n, h), "block"));
+    Model ms = build_model(block_deck(n, h, "block"));
     auto corner = [&](double x0) {
       std::vector<std::uint32_t> few;
       for (std::uint32_t i = 0; i < ms.nodes.size(); ++i)
@@ -98,11 +106,11 @@ int main(int argc, char** argv) {
   }
 
   // 2. Fully refined vs directly built.
-  Model coarse = build_model(parse_deck(block_deck(n / 2, 2 * h), "coarse block"));
+  Model coarse = build_model(block_deck(n / 2, 2 * h, "coarse block"));
   std::vector<std::uint32_t> all;
   for (std::uint32_t i = 0; i < coarse.nodes.size(); ++i) all.push_back(i);
   refine_nodes(coarse, all, spec);
-  Model direct = build_model(parse_deck(block_deck(n, h), "block"));
+  Model direct = build_model(block_deck(n, h, "block"));
   // Alternating rounds, best of each: the VM's noise comes in bursts that would otherwise land
   // on one of the two (single 10-step timings gave ratios from 1.01 to 1.25).
   double s_ref = INFINITY, s_dir = INFINITY;

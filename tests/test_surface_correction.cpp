@@ -148,7 +148,7 @@ TEST(SurfaceCorrection, TensionPlateCentreLineErrorBelowTwoPercent) {
     ro.write_files = false;
     ro.quiet = true;
     const RunResult r =
-        run_static(parse_deck(tension_plate_deck(methods[k], "source_horizon", 0), "plate"), ro);
+        run_static(tension_plate_deck(methods[k], "source_horizon", 0), ro);
     mean_ex[k] = plate_errors(r.model.nodes, 200e6, 200e9, 1.0 / 3.0).mean_ex(0, 1);
   }
   std::printf("plate mean |e(u_x)|: energy %.3f%%, moments %.3f%%\n", mean_ex[0], mean_ex[1]);

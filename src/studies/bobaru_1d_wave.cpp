@@ -10,7 +10,7 @@
 #include "adapt/adaptor.hpp"
 #include "discretize/lattice_moment.hpp"
 #include "run/simulation.hpp"
-#include "input/deck.hpp"
+#include "input/deck_builder.hpp"
 #include "setup/build_model.hpp"
 #include "solver/velocity_verlet.hpp"
 #include "studies/study_csv.hpp"
@@ -35,28 +35,38 @@ double bar_displacement_at(const NodeSet& ns, double x) {
 WaveArrival bobaru_wave_arrival(int nodes, double delta, bool adaptive, const std::string& scaling,
                                 bool lattice) {
   const double dx = 450.0 / (nodes - 1);
-  const std::string yaml = fmt::format(
-      "model: {{dimension: 1}}\n"
-      "material: {{youngs_modulus: 1.0, density: 1.0, micromodulus: triangular}}\n"
-      "discretization: {{spacing: {:.17g}, horizon: {:.17g}, registration: node_on_edge, "
-      "quadrature: subcell, body: {{box: {{min: [0], max: [450]}}}}, micromodulus_calibration: {}}}\n"
-      "initial_conditions: {{displacement: ['0.02*exp(-0.01*x^2)']}}\n"
-      "damage: {{enabled: false}}\n"
-      "solver: {{end_time: 460, time_step: {:.17g}, bond_pairing: dual_horizon}}\n{}",
-      dx, delta, lattice ? "lattice" : "analytic", 0.25 * dx,
-      adaptive ? "adapt: {max_level: 1, energy_trigger: 0.75, energy: total, coarsen: true, "
-                 "visibility_factor: 6, scaling: " + scaling +
-                 // delta-m: m grows by one per level (thesis Table 4.5: 3, 4, 5, 6).
-                 (scaling == "delta_m"
-                      ? fmt::format(", m_per_level: [{0:.17g}, {1:.17g}]", delta / dx, delta / dx + 1)
-                      : std::string()) +
-                 // Zones whose horizon differs from the coarse grid's differ in dispersion and
-                 // pump energy as they move (+103% by t = 400 on 2,701 nodes with delta-scaling;
-                 // delta-m: amplitude at x = 400 +9.9%); m-scaling ones do not (+1.3%) and are
-                 // left alone.
-                 (scaling != "m" ? ", conserve_energy: true}\n" : "}\n")
-               : std::string());
-  const Deck dk = parse_deck(yaml, "bobaru-1d-wave (built-in)");
+  DeckBuilder d;
+  d.set("model.dimension", 1)
+      .set("material.youngs_modulus", 1.0)
+      .set("material.density", 1.0)
+      .set("material.micromodulus", "triangular")
+      .set("discretization.spacing", dx)
+      .set("discretization.horizon", delta)
+      .set("discretization.registration", "node_on_edge")
+      .set("discretization.quadrature", "subcell")
+      .set("discretization.body.box.min", {0.0})
+      .set("discretization.body.box.max", {450.0})
+      .set("discretization.micromodulus_calibration", lattice ? "lattice" : "analytic")
+      .set("initial_conditions.displacement", std::vector<std::string>{"0.02*exp(-0.01*x^2)"})
+      .set("damage.enabled", false)
+      .set("solver.end_time", 460.0)
+      .set("solver.time_step", 0.25 * dx)
+      .set("solver.bond_pairing", "dual_horizon");
+  if (adaptive) {
+    d.set("adapt.max_level", 1)
+        .set("adapt.energy_trigger", 0.75)
+        .set("adapt.energy", "total")
+        .set("adapt.coarsen", true)
+        .set("adapt.visibility_factor", 6)
+        .set("adapt.scaling", scaling);
+    // delta-m: m grows by one per level (thesis Table 4.5: 3, 4, 5, 6).
+    if (scaling == "delta_m") d.set("adapt.m_per_level", {delta / dx, delta / dx + 1});
+    // Zones whose horizon differs from the coarse grid's differ in dispersion and pump energy as
+    // they move (+103% by t = 400 on 2,701 nodes with delta-scaling; delta-m: amplitude at
+    // x = 400 +9.9%); m-scaling ones do not (+1.3%) and are left alone.
+    if (scaling != "m") d.set("adapt.conserve_energy", true);
+  }
+  const Deck dk = d.build("bobaru-1d-wave (built-in)");
   Model m = build_model(dk);
   const TimeStepChoice ts = choose_time_step(dk, m);
   VelocityVerlet vv(m, ts.dt);

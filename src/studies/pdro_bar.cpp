@@ -8,7 +8,7 @@
 #include <numbers>
 
 #include "run/simulation.hpp"
-#include "input/deck.hpp"
+#include "input/deck_builder.hpp"
 #include "io/line_plot.hpp"
 #include "setup/build_model.hpp"
 #include "solver/velocity_verlet.hpp"
@@ -33,25 +33,32 @@ BarResult pull_bar(double dx, double n_overlay, const PdroBarOptions& o) {
   const double rate = 2.0 * v / L;
   const double target = n_overlay > 0 ? dx / n_overlay : dx;
   const double end_time = 1.6 * s0_plane_strain(kM * target) / rate;
-  std::string yaml = fmt::format(
-      "model: {{dimension: 2, plane: strain}}\n"
-      "material: {{youngs_modulus: {E}, density: {rho}, fracture_energy: {G0}}}\n"
-      "discretization: {{spacing: {dx}, horizon_factor: {m}, "
-      "body: {{box: {{min: [0, {ylo}], max: [{L}, {yhi}]}}}}}}\n"
-      "boundary_conditions:\n"
-      "  - {{region: {{box: {{min: [0, {ylo}], max: [{d}, {yhi}]}}}}, velocity: ['{vx}', null]}}\n"
-      "  - {{region: {{box: {{min: [{Ld}, {ylo}], max: [{L}, {yhi}]}}}}, velocity: ['{vx}', null]}}\n"
-      "initial_conditions: {{velocity: ['{vx}', 0]}}\n"
-      "solver: {{end_time: {T}}}\n",
-      fmt::arg("E", kE), fmt::arg("rho", kRho), fmt::arg("G0", kG0), fmt::arg("dx", dx),
-      fmt::arg("m", kM), fmt::arg("ylo", -0.5 * w), fmt::arg("yhi", 0.5 * w), fmt::arg("L", L),
-      fmt::arg("d", delta), fmt::arg("Ld", L - delta), fmt::arg("vx", fmt::format("{}*(2*x/{}-1)", v, L)),
-      fmt::arg("T", end_time));
+  const std::string vx = fmt::format("{}*(2*x/{}-1)", v, L);
+  DeckBuilder d;
+  d.set("model.dimension", 2)
+      .set("model.plane", "strain")
+      .set("material.youngs_modulus", kE)
+      .set("material.density", kRho)
+      .set("material.fracture_energy", kG0)
+      .set("discretization.spacing", dx)
+      .set("discretization.horizon_factor", kM)
+      .set("discretization.body.box.min", {0.0, -0.5 * w})
+      .set("discretization.body.box.max", {L, 0.5 * w})
+      .set("initial_conditions.velocity", std::vector<std::string>{vx, "0"})
+      .set("solver.end_time", end_time);
+  // The grips: a horizon at either end moves with the bar's initial velocity field.
+  for (auto [lo, hi] : {std::pair{0.0, delta}, std::pair{L - delta, L}})
+    d.append("boundary_conditions",
+             DeckBuilder()
+                 .set("region.box.min", {lo, -0.5 * w})
+                 .set("region.box.max", {hi, 0.5 * w})
+                 .set("velocity", std::vector<std::optional<std::string>>{vx, std::nullopt}));
   if (n_overlay > 0)
-    yaml += fmt::format("damage: {{overlay: {{n: {}, interpolation: {}, weight: {}, sampling: {}}}}}\n",
-                        n_overlay, o.pim ? "pim" : "pddo", o.gaussian ? "gaussian" : "uniform",
-                        o.whole_bond ? "whole_bond" : "three_pairs");
-  const Deck dk = parse_deck(yaml, "pdro-bar (built-in)");
+    d.set("damage.overlay.n", n_overlay)
+        .set("damage.overlay.interpolation", o.pim ? "pim" : "pddo")
+        .set("damage.overlay.weight", o.gaussian ? "gaussian" : "uniform")
+        .set("damage.overlay.sampling", o.whole_bond ? "whole_bond" : "three_pairs");
+  const Deck dk = d.build("pdro-bar (built-in)");
   Model m = build_model(dk);
   const TimeStepChoice ts = choose_time_step(dk, m);
   VelocityVerlet vv(m, ts.dt);

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <utility>
 
+#include "input/deck_builder.hpp"
+
 namespace periadapt {
 
 namespace {
@@ -30,33 +32,55 @@ double PlateErrors::max_ex(double lo, double hi) const { return max_over(x, ex, 
 double PlateErrors::mean_ey(double lo, double hi) const { return mean_over(y, ey, lo, hi); }
 double PlateErrors::max_ey(double lo, double hi) const { return max_over(y, ey, lo, hi); }
 
-std::string tension_plate_deck(const std::string& surface_correction, const std::string& bond_pairing,
-                               int refined_level, bool upper_half) {
-  std::string d = R"(
-model: {dimension: 2, plane: stress, thickness: 0.01}
-material: {youngs_modulus: 200.0e9, density: 7850.0}
-discretization:
-  spacing: 0.01
-  horizon: 0.03015
-  registration: node_on_edge
-  quadrature: ipa_hybrid
-  surface_correction: )" + surface_correction + R"(
-  body: {box: {min: [-0.5, -0.25], max: [0.5, 0.25]}}
-loads:
-  - {name: right, type: traction, region: {box: {min: [0.5, -0.25], max: [0.5, 0.25]}}, value: [200.0e6, 0]}
-  - {name: left, type: traction, region: {box: {min: [-0.5, -0.25], max: [-0.5, 0.25]}}, value: [-200.0e6, 0]}
-boundary_conditions:
-  - {name: vertical axis, region: {box: {min: [0, -0.25], max: [0, 0.25]}}, displacement: [0, null]}
-  - {name: horizontal axis, region: {box: {min: [-0.5, 0], max: [0.5, 0]}}, displacement: [null, 0]}
-damage: {enabled: false}
-solver: {type: static, bond_pairing: )" + bond_pairing + "}\n";
+Deck tension_plate_deck(const std::string& surface_correction, const std::string& bond_pairing,
+                        int refined_level, bool upper_half, const std::string& name) {
+  auto box = [](double x0, double y0, double x1, double y1) {
+    return DeckBuilder().set("box.min", {x0, y0}).set("box.max", {x1, y1});
+  };
+  DeckBuilder d;
+  d.set("model.dimension", 2)
+      .set("model.plane", "stress")
+      .set("model.thickness", 0.01)
+      .set("material.youngs_modulus", 200.0e9)
+      .set("material.density", 7850.0)
+      .set("discretization.spacing", 0.01)
+      .set("discretization.horizon", 0.03015)
+      .set("discretization.registration", "node_on_edge")
+      .set("discretization.quadrature", "ipa_hybrid")
+      .set("discretization.surface_correction", surface_correction)
+      .set("discretization.body", box(-0.5, -0.25, 0.5, 0.25))
+      .append("loads", DeckBuilder()
+                           .set("name", "right")
+                           .set("type", "traction")
+                           .set("region", box(0.5, -0.25, 0.5, 0.25))
+                           .set("value", {200.0e6, 0.0}))
+      .append("loads", DeckBuilder()
+                           .set("name", "left")
+                           .set("type", "traction")
+                           .set("region", box(-0.5, -0.25, -0.5, 0.25))
+                           .set("value", {-200.0e6, 0.0}))
+      .append("boundary_conditions",
+              DeckBuilder()
+                  .set("name", "vertical axis")
+                  .set("region", box(0, -0.25, 0, 0.25))
+                  .set("displacement", std::vector<std::optional<std::string>>{"0", std::nullopt}))
+      .append("boundary_conditions",
+              DeckBuilder()
+                  .set("name", "horizontal axis")
+                  .set("region", box(-0.5, 0, 0.5, 0))
+                  .set("displacement", std::vector<std::optional<std::string>>{std::nullopt, "0"}))
+      .set("damage.enabled", false)
+      .set("solver.type", "static")
+      .set("solver.bond_pairing", bond_pairing);
   // The zone stops short of the constrained axis, whose coarse nodes stay.
-  const std::string zone = upper_half ? "{min: [-0.5, 0.001], max: [0.5, 0.25]}"
-                                      : "{min: [-0.5, -0.25], max: [-0.001, 0.25]}";
   if (refined_level > 0)
-    d += "adapt:\n  scaling: delta\n  initial_refinement: [{region: {box: " + zone +
-         "}, level: " + std::to_string(refined_level) + "}]\n";
-  return d;
+    d.set("adapt.scaling", "delta")
+        .append("adapt.initial_refinement",
+                DeckBuilder()
+                    .set("region", upper_half ? box(-0.5, 0.001, 0.5, 0.25)
+                                              : box(-0.5, -0.25, -0.001, 0.25))
+                    .set("level", refined_level));
+  return d.build(name);
 }
 
 PlateErrors plate_errors(const NodeSet& ns, double p, double E, double nu) {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/node_set.hpp"
+#include "input/deck.hpp"
 
 namespace periadapt {
 
@@ -28,7 +29,8 @@ PlateErrors plate_errors(const NodeSet& nodes, double p, double E, double nu);
 // symmetry-axis constraints, IPA-Hybrid areas; `refined_level` > 0 refines a half to that level:
 // x < 0 (models A-C) or y > 0 (`upper_half`, models D-F).
 // `surface_correction`: the deck value (false | energy | moments).
-std::string tension_plate_deck(const std::string& surface_correction, const std::string& bond_pairing,
-                               int refined_level, bool upper_half = false);
+Deck tension_plate_deck(const std::string& surface_correction, const std::string& bond_pairing,
+                        int refined_level, bool upper_half = false,
+                        const std::string& name = "tension plate (built-in)");
 
 }  // namespace periadapt

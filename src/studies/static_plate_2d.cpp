@@ -24,8 +24,8 @@ double mean(const std::vector<double>& v) {
 }
 
 PlateErrors solve(const std::string& correction) {
-  const Deck dk = parse_deck(tension_plate_deck(correction, "source_horizon", 0),
-                             "static-plate-2d (built-in)");
+  const Deck dk = tension_plate_deck(correction, "source_horizon", 0, false,
+                                           "static-plate-2d (built-in)");
   RunOptions ro;
   ro.write_files = false;
   ro.quiet = true;

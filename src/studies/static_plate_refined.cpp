@@ -38,8 +38,8 @@ std::optional<RunResult> solve_half_refined(const Variant& v, int level, bool up
     fmt::print("{:<6} {:<34} skipped (non-symmetric system beyond our solvers' reach)\n", model, v.name);
     return std::nullopt;
   }
-  const Deck dk = parse_deck(tension_plate_deck(v.correction, v.pairing, level, upper),
-                             "static-plate-refined (built-in)");
+  const Deck dk = tension_plate_deck(v.correction, v.pairing, level, upper,
+                                           "static-plate-refined (built-in)");
   RunOptions ro;
   ro.write_files = false;
   ro.quiet = true;

@@ -3,7 +3,9 @@
 #include <fmt/core.h>
 
 #include <cmath>
+#include <optional>
 
+#include "input/deck_builder.hpp"
 #include "studies/study_csv.hpp"
 #include "studies/wave_through_refinement.hpp"
 
@@ -14,25 +16,15 @@ namespace {
 constexpr double kDx0 = 1e-3;
 const std::array<double, 2> kProbe{0.1, 0.04};
 
-// `lattice`: micromoduli calibrated to the quadrature's lattice moment at each level's m.
-std::string deck(const std::string& adapt, const std::string& pairing = "source_horizon",
-                 bool lattice = false) {
-  return std::string(
-             "model: {dimension: 2, plane: stress}\n"
-             "material: {youngs_modulus: 1.0, density: 1.0}\n"
-             "discretization: {spacing: 1.0e-3, horizon_factor: 3.0, registration: node_on_edge, "
-             "quadrature: pa_pdlammps, body: {box: {min: [0, 0], max: [0.3, 0.04]}}, "
-             "micromodulus_calibration: ")
-      .append(lattice ? "lattice" : "analytic")
-      .append("}\n"
-             "initial_conditions: {displacement: ['2e-4*exp(-(x/0.03)^2)', 0]}\n"
-             "damage: {enabled: false}\n"
-             // One step for every run (the level-3 delta grid's stable step is 1.16e-4), so the probe
-             // histories line up sample by sample.
-             "solver: {time_step: 1.0e-4, end_time: 0.2, bond_pairing: ")
-      .append(pairing)
-      .append("}\n")
-      .append(adapt);
+// `adapt`: the adapt section (none: the uniform coarse grid). `lattice`: micromoduli calibrated
+// to the quadrature's lattice moment at each level's m.
+Deck deck(const std::optional<DeckBuilder>& adapt, const std::string& pairing = "source_horizon",
+          bool lattice = false) {
+  DeckBuilder d = gaussian_wave_deck(1.0e-3, 0.3, 0.04, 0.03, 0.2);
+  d.set("discretization.micromodulus_calibration", lattice ? "lattice" : "analytic")
+      .set("solver.bond_pairing", pairing);
+  if (adapt) d.set("adapt", *adapt);
+  return d.build("wave-levels-2d (built-in)");
 }
 
 // Nested refinement boxes around (0.15, 0.02), outermost first.
@@ -42,19 +34,25 @@ const double kBox[3][4] = {{0.13, 0.01, 0.17, 0.03},
 
 // `interface`: the interface-horizon correction with delta-scaling (the thesis' Table 4.4 runs;
 // with the dual-horizon pairing it raises the reflection, 0.175-0.260% against 0.113-0.166%).
-std::string adapt_section(const std::string& convergence, int level, bool interface) {
-  std::string a = fmt::format("adapt:\n  max_level: {}\n", level);
+DeckBuilder adapt_section(const std::string& convergence, int level, bool interface) {
+  DeckBuilder a;
+  a.set("max_level", level);
   if (convergence == "delta") {
-    a += interface ? "  scaling: delta\n  interface_horizon: true\n" : "  scaling: delta\n";
+    a.set("scaling", "delta");
+    if (interface) a.set("interface_horizon", true);
   } else {
-    a += "  scaling: delta_m\n  m_per_level: [3, 4, 5, 6]\n";
-    a.replace(a.find("[3, 4, 5, 6]"), 12,
-              level == 1 ? "[3, 4]" : level == 2 ? "[3, 4, 5]" : "[3, 4, 5, 6]");
+    // m = 3, 4, 5, 6 on levels 0-3.
+    std::vector<double> m;
+    for (int l = 0; l <= level; ++l) m.push_back(3.0 + l);
+    a.set("scaling", "delta_m").set("m_per_level", m);
   }
-  a += "  visibility: false\n  initial_refinement:\n";
+  a.set("visibility", false);
   for (int l = 1; l <= level; ++l)
-    a += fmt::format("    - {{region: {{box: {{min: [{}, {}], max: [{}, {}]}}}}, level: {}}}\n",
-                     kBox[l - 1][0], kBox[l - 1][1], kBox[l - 1][2], kBox[l - 1][3], l);
+    a.append("initial_refinement",
+             DeckBuilder()
+                 .set("region.box.min", {kBox[l - 1][0], kBox[l - 1][1]})
+                 .set("region.box.max", {kBox[l - 1][2], kBox[l - 1][3]})
+                 .set("level", l));
   return a;
 }
 
@@ -62,13 +60,13 @@ std::string adapt_section(const std::string& convergence, int level, bool interf
 
 double wave_levels_delta_m_reflection(int level, bool dual_horizon, bool lattice) {
   const std::string pairing = dual_horizon ? "dual_horizon" : "source_horizon";
-  const WaveRun uniform = run_wave(deck("", pairing, lattice), kProbe);
+  const WaveRun uniform = run_wave(deck(std::nullopt, pairing, lattice), kProbe);
   const WaveRun r = run_wave(deck(adapt_section("delta_m", level, false), pairing, lattice), kProbe);
   return reflection_percent(r, uniform);
 }
 
 std::vector<WaveLevelsRow> wave_levels_rows() {
-  const WaveRun uniform = run_wave(deck(""), kProbe);
+  const WaveRun uniform = run_wave(deck(std::nullopt), kProbe);
   const long nx = std::lround(0.3 / kDx0) + 1;
   auto refined = [](double x, double y) {
     return x >= kBox[0][0] && x <= kBox[0][2] && y >= kBox[0][1] && y <= kBox[0][3];
@@ -88,7 +86,7 @@ std::vector<WaveLevelsRow> wave_levels_rows() {
   // delta-m levels differ in m (3, 4, 5, 6), hence in the quadrature's bond stiffness (0.869,
   // 0.880, 0.935, 0.930 of the continuum's with PA-PDLAMMPS): lattice calibration removes that
   // impedance jump. Its uniform reference is calibrated too.
-  const WaveRun uniform_lattice = run_wave(deck("", "source_horizon", true), kProbe);
+  const WaveRun uniform_lattice = run_wave(deck(std::nullopt, "source_horizon", true), kProbe);
   for (int level = 1; level <= 3; ++level) {
     const WaveRun r = run_wave(deck(adapt_section("delta_m", level, false), "dual_horizon", true), kProbe);
     const std::array<double, 2> d = peak_drops(r, uniform_lattice, kDx0, nx, refined, &WaveRun::e_peak);

@@ -3,8 +3,10 @@
 #include <fmt/core.h>
 
 #include <cmath>
+#include <optional>
 #include <filesystem>
 
+#include "input/deck_builder.hpp"
 #include "io/line_plot.hpp"
 #include "studies/wave_through_refinement.hpp"
 
@@ -14,35 +16,35 @@ namespace {
 
 constexpr double kDx = 0.5e-3;  // coarse spacing (node_on_edge: coarse nodes at multiples of it)
 
-WaveRun run(const std::string& adapt) {
-  const std::string yaml =
-      "model: {dimension: 2, plane: stress}\n"
-      "material: {youngs_modulus: 1.0, density: 1.0}\n"
-      "discretization: {spacing: 0.5e-3, horizon_factor: 3.0, registration: node_on_edge, "
-      "quadrature: pa_pdlammps, body: {box: {min: [0, 0], max: [0.1, 0.04]}}}\n"
-      "initial_conditions: {displacement: ['2e-4*exp(-(x/0.01)^2)', 0]}\n"
-      "damage: {enabled: false}\n"
-      "solver: {time_step: 1.0e-4, end_time: 0.08}\n";
+// `adapt`: the adapt section (empty: the uniform coarse grid).
+WaveRun run(const std::optional<DeckBuilder>& adapt) {
+  DeckBuilder d = gaussian_wave_deck(0.5e-3, 0.1, 0.04, 0.01, 0.08);
+  if (adapt) d.set("adapt", *adapt);
   // Probe: the thesis' displacement history point.
-  return run_wave(std::string(yaml).append(adapt), {0.034, 0.02});
+  return run_wave(d.build("wave-patch-2d (built-in)"), {0.034, 0.02});
 }
 
 }  // namespace
 
 std::vector<WavePatchRow> wave_patch_rows(std::vector<PlotSeries>* series) {
-  const std::string patch =
-      "  initial_refinement: [{region: {box: {min: [0.0475, 0.0175], max: [0.0525, 0.0225]}}, "
-      "level: 1}]\n  visibility: false\n";
-  const WaveRun ref = run("");
+  auto patch = [](const char* scaling, bool interface) {
+    DeckBuilder a;
+    a.set("scaling", scaling);
+    if (interface) a.set("interface_horizon", true);
+    return a.append("initial_refinement",
+                    DeckBuilder()
+                        .set("region.box.min", {0.0475, 0.0175})
+                        .set("region.box.max", {0.0525, 0.0225})
+                        .set("level", 1))
+        .set("visibility", false);
+  };
+  const WaveRun ref = run(std::nullopt);
   struct Variant {
     const char* name;
-    std::string adapt;
-  } variants[3] = {
-      // (string append: GCC 12 warns falsely on operator+ here)
-      {"A (delta kept, m = 6)", std::string("adapt:\n  scaling: m\n").append(patch)},
-      {"B (delta halved, m = 3)", std::string("adapt:\n  scaling: delta\n").append(patch)},
-      {"C (B + interface horizon)",
-       std::string("adapt:\n  scaling: delta\n  interface_horizon: true\n").append(patch)}};
+    DeckBuilder adapt;
+  } variants[3] = {{"A (delta kept, m = 6)", patch("m", false)},
+                   {"B (delta halved, m = 3)", patch("delta", false)},
+                   {"C (B + interface horizon)", patch("delta", true)}};
   // Local energy reductions (Table 4.3): for each node of the refined patch, the drop of its peak
   // potential (kinetic) energy density below the uniform coarse run's at the nearest coarse node
   // (the wave is plane and 20 spacings wide, so a quarter spacing of offset changes little);

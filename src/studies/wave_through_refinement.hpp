@@ -6,6 +6,9 @@
 #include <string>
 #include <vector>
 
+#include "input/deck.hpp"
+#include "input/deck_builder.hpp"
+
 namespace periadapt {
 
 struct WaveRun {
@@ -18,9 +21,15 @@ struct WaveRun {
   std::vector<double> w_peak, k_peak, e_peak;
 };
 
-// Runs `deck` (a complete YAML deck, explicit, 2D) and records u_x at the active node nearest
+// The thesis' wave deck: a plane-stress strip [0, length] x [0, width] (E = rho = 1, m = 3,
+// node-on-edge grid, PA-PDLAMMPS areas, no damage, dt = 1e-4) released from the Gaussian
+// u_x = 2e-4 exp(-(x / width_of_pulse)^2).
+DeckBuilder gaussian_wave_deck(double spacing, double length, double width, double width_of_pulse,
+                               double end_time);
+
+// Runs `deck` (explicit, 2D) and records u_x at the active node nearest
 // `probe`.
-WaveRun run_wave(const std::string& deck, std::array<double, 2> probe);
+WaveRun run_wave(const Deck& deck, std::array<double, 2> probe);
 
 // Drop (%) of each refined node's peak density below the uniform run's at the nearest node of
 // the uniform grid (node_on_edge, spacing dx, nx nodes per row), over the nodes `inside` selects:

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "input/deck.hpp"
+#include "input/deck_builder.hpp"
 #include "setup/build_model.hpp"
 #include "studies/study_csv.hpp"
 
@@ -14,14 +14,20 @@ namespace periadapt {
 std::vector<double> weak_directions_deg(double m, const std::string& quadrature) {
   // A square patch wide enough that its centre node has a full interior family.
   const int half = static_cast<int>(std::ceil(m)) + 3;
-  const std::string yaml = fmt::format(
-      "model: {{dimension: 2, plane: stress}}\n"
-      "material: {{youngs_modulus: 1.0, density: 1.0, critical_stretch: 0.01}}\n"
-      "discretization: {{spacing: 1.0, horizon_factor: {:.17g}, quadrature: {}, "
-      "body: {{box: {{min: [{}, {}], max: [{}, {}]}}}}}}\n"
-      "solver: {{steps: 1}}\n",
-      m, quadrature, -half - 0.5, -half - 0.5, half + 0.5, half + 0.5);
-  const Model model = build_model(parse_deck(yaml, "weak-directions (built-in)"));
+  const double edge = half + 0.5;
+  const Model model = build_model(DeckBuilder()
+                                      .set("model.dimension", 2)
+                                      .set("model.plane", "stress")
+                                      .set("material.youngs_modulus", 1.0)
+                                      .set("material.density", 1.0)
+                                      .set("material.critical_stretch", 0.01)
+                                      .set("discretization.spacing", 1.0)
+                                      .set("discretization.horizon_factor", m)
+                                      .set("discretization.quadrature", quadrature)
+                                      .set("discretization.body.box.min", {-edge, -edge})
+                                      .set("discretization.body.box.max", {edge, edge})
+                                      .set("solver.steps", 1)
+                                      .build("weak-directions (built-in)"));
   const NodeSet& ns = model.nodes;
   std::size_t centre = 0;
   for (std::size_t i = 0; i < ns.size(); ++i)
