@@ -7,6 +7,7 @@
 
 #include "core/geometry.hpp"
 #include "adapt/adapt_spec.hpp"
+#include "material/contact.hpp"
 #include "overlay/pdro.hpp"
 #include "discretize/grid.hpp"
 #include "discretize/partial_volume.hpp"
@@ -98,6 +99,7 @@ struct Deck {
   bool damage = true;
   std::vector<Shape> no_fail;
   PdroSpec pdro;
+  ContactSpec contact;
   // solver
   enum class SolverType { Explicit, Static, Relaxation } solver = SolverType::Explicit;
   int load_steps = 1;               // relaxation

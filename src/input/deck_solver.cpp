@@ -83,6 +83,27 @@ void parse_solver(Section& top, Deck& dk) {
                           "forces act on both ends of a bond)");
     s.finish();
   }
+  if (auto c = top.optional_section("contact")) {
+    ContactSpec& cs = dk.contact;
+    cs.enabled = c->boolean("enabled", true);
+    cs.stiffness_factor = c->number("stiffness_factor", cs.stiffness_factor, [](double v) {
+      return (v > 0 && v <= 1000) ? std::string() : std::string("must be in (0, 1000] (times c)");
+    });
+    cs.distance_factor = c->number("distance_factor", cs.distance_factor, [](double v) {
+      return (v > 0 && v <= 1) ? std::string()
+                               : std::string("must be in (0, 1] (of the reference distance)");
+    });
+    cs.spacing_factor = c->number("spacing_factor", cs.spacing_factor, [](double v) {
+      return (v > 0 && v <= 3) ? std::string() : std::string("must be in (0, 3] (grid spacings)");
+    });
+    if (cs.enabled && dk.solver != Deck::SolverType::Explicit)
+      c->fail("enabled", "contact forces are for explicit runs (solver.type: explicit); a static "
+                         "or relaxation solve does not track them");
+    if (cs.enabled && dk.multirate)
+      c->fail("enabled", "contact couples nodes outside their bond rows; it needs every node on "
+                         "every step (remove solver.multirate)");
+    c->finish();
+  }
   const Formulation f = *Formulation::named(dk.formulation, dk.dual_horizon);
   if (dk.pdro.enabled && !f.takes_overlay())
     top.fail("damage", f.dual_horizon

@@ -17,6 +17,7 @@
 #include "discretize/surface_correction.hpp"
 #include "material/formulation.hpp"
 #include "material/lps.hpp"
+#include "material/contact.hpp"
 #include "material/micromodulus.hpp"
 #include "overlay/pdro.hpp"
 #include "model/time_function.hpp"
@@ -81,6 +82,7 @@ struct Model {
   std::optional<Shape> body_clip; // ... nor outside a non-box body (disk)
   SurfaceCorrection surface_correction = SurfaceCorrection::None;
   PdroSpec pdro;              // refinement overlay for bond failure (PMB)
+  ContactSpec contact;        // short-range repulsion between nodes (material/contact.hpp)
   mutable LpsScratch lps_scratch;  // per-node weighted volume and dilatation (LPS)
   // With track_breakable_stretch (the stretch trigger, row-local forces): each row's largest
   // stretch of its intact breakable bonds, from its latest force pass.

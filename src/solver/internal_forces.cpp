@@ -1,5 +1,6 @@
 #include "solver/internal_forces.hpp"
 
+#include "material/contact.hpp"
 #include "material/lps_dual.hpp"
 #include "material/pmb.hpp"
 #include "material/pmb_dual.hpp"
@@ -37,9 +38,7 @@ std::size_t row_local_forces(Model& m, bool allow_breaking, std::vector<std::uin
       .newly_broken;
 }
 
-}  // namespace
-
-std::size_t internal_forces(Model& m, bool allow_breaking, std::vector<std::uint64_t>* log,
+std::size_t material_forces(Model& m, bool allow_breaking, std::vector<std::uint64_t>* log,
                             std::vector<double>* W) {
   const Formulation& f = m.formulation;
   if (f.kind == Kind::Lps)
@@ -55,12 +54,24 @@ std::size_t internal_forces(Model& m, bool allow_breaking, std::vector<std::uint
   return row_local_forces(m, allow_breaking, log, W, nullptr);
 }
 
-std::size_t internal_forces_rows(Model& m, bool allow_breaking, const std::vector<std::uint32_t>& rows,
-                                 std::vector<std::uint64_t>* log, std::vector<double>* W) {
-  return row_local_forces(m, allow_breaking, log, W, &rows);
+}  // namespace
+
+std::size_t internal_forces(Model& m, bool allow_breaking, std::vector<std::uint64_t>* log,
+                            std::vector<double>* W) {
+  const std::size_t broken = material_forces(m, allow_breaking, log, W);
+  if (m.contact.enabled) add_contact_forces(m.contact, m.nodes, nullptr, W);
+  return broken;
 }
 
-void energy_density(const Model& m, std::vector<double>& W) {
+std::size_t internal_forces_rows(Model& m, bool allow_breaking, const std::vector<std::uint32_t>& rows,
+                                 std::vector<std::uint64_t>* log, std::vector<double>* W) {
+  const std::size_t broken = row_local_forces(m, allow_breaking, log, W, &rows);
+  if (m.contact.enabled) add_contact_forces(m.contact, m.nodes, &rows, W);
+  return broken;
+}
+
+namespace {
+void material_energy_density(const Model& m, std::vector<double>& W) {
   switch (m.formulation.kind) {
     case Kind::HistoryLaw:
       m.formulation.law->energy_density(m.nodes, m.bonds, law_call(m), W);
@@ -75,6 +86,14 @@ void energy_density(const Model& m, std::vector<double>& W) {
   }
 }
 
+}  // namespace
+
+void energy_density(const Model& m, std::vector<double>& W) {
+  material_energy_density(m, W);
+  if (m.contact.enabled) add_contact_energy(m.contact, m.nodes, W);
+}
+
+// Contact forces are not in the stress: they act between nodes that the bonds do not join.
 void stress_density(const Model& m, std::vector<double>& sigma) {
   switch (m.formulation.kind) {
     case Kind::HistoryLaw:

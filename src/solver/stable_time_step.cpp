@@ -4,6 +4,7 @@
 #include <limits>
 #include <vector>
 
+#include "material/contact.hpp"
 #include "material/pmb.hpp"
 
 namespace periadapt {
@@ -11,6 +12,9 @@ namespace periadapt {
 StableStep stable_time_step(const Model& model) {
   std::vector<double> K;
   pmb_stiffness_sum(model.nodes, model.bonds, model.material.shape, K);
+  if (model.contact.enabled)
+    for (std::size_t i = 0; i < K.size(); ++i)
+      if (model.nodes.flags[i] & kActive) K[i] += contact_stiffness_bound(model.contact, model.nodes, i);
   StableStep best{std::numeric_limits<double>::infinity(), 0};
   for (std::size_t i = 0; i < K.size(); ++i) {
     if (!(model.nodes.flags[i] & kActive) || K[i] <= 0) continue;
@@ -26,7 +30,8 @@ StableStep stable_time_step(const Model& model, const std::vector<std::uint32_t>
   StableStep best{std::numeric_limits<double>::infinity(), 0};
   for (std::uint32_t i : nodes) {
     if (!(ns.flags[i] & kActive)) continue;
-    const double k = pmb_stiffness_row(ns, bf, model.material.shape, i);
+    const double k = pmb_stiffness_row(ns, bf, model.material.shape, i) +
+                     (model.contact.enabled ? contact_stiffness_bound(model.contact, ns, i) : 0.0);
     if (!(k > 0)) continue;
     const double dt = std::sqrt(2.0 * ns.density[i] / k);
     if (dt < best.dt) best = {dt, i};
