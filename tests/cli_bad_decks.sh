@@ -16,6 +16,7 @@ check overlay_sampling.yaml "overlay_sampling.yaml:5:29: key 'damage.overlay.sam
 check multirate_lps.yaml "multirate_lps.yaml:7:14: key 'solver.multirate': multi-rate stepping needs row-local forces: formulation: pmb"
 check lattice_lps.yaml "lattice_lps.yaml:6:29: key 'discretization.micromodulus_calibration': lattice calibrates bond-based micromoduli"
 check contact_static.yaml "contact_static.yaml:9:12: key 'contact.enabled': contact forces are for explicit runs"
+check impactor_axis.yaml "impactor_axis.yaml:9:78: key 'impactors[0].axis': a sphere has no length or axis"
 check body_outside.yaml "body_outside.yaml:5:9: key 'discretization.body': the body cannot be an outside (complement) region"
 # run refuses a time step above the finest level's stable step; so must check.
 check adapt_time_step.yaml "adapt_time_step.yaml: key 'solver.time_step': 1.5e-07 s exceeds the stable step expected at refinement level 1"

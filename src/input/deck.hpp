@@ -8,6 +8,7 @@
 #include "core/geometry.hpp"
 #include "adapt/adapt_spec.hpp"
 #include "material/contact.hpp"
+#include "material/impactor.hpp"
 #include "overlay/pdro.hpp"
 #include "discretize/grid.hpp"
 #include "discretize/partial_volume.hpp"
@@ -100,6 +101,7 @@ struct Deck {
   std::vector<Shape> no_fail;
   PdroSpec pdro;
   ContactSpec contact;
+  std::vector<Impactor> impactors;
   // solver
   enum class SolverType { Explicit, Static, Relaxation } solver = SolverType::Explicit;
   int load_steps = 1;               // relaxation

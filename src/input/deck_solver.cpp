@@ -104,6 +104,43 @@ void parse_solver(Section& top, Deck& dk) {
                          "every step (remove solver.multirate)");
     c->finish();
   }
+  for (Section s : top.list("impactors")) {
+    Impactor im;
+    const std::size_t D = static_cast<std::size_t>(dk.dim);
+    auto vec = [&](const std::string& key) {
+      const std::vector<double> v = s.numbers(key, D, D);
+      Vec3 out{0, 0, 0};
+      for (std::size_t d = 0; d < D; ++d) out[d] = v[d];
+      return out;
+    };
+    im.shape = s.choice("shape", {"sphere", "cylinder"}, "sphere") == "cylinder"
+                   ? Impactor::Shape::Cylinder
+                   : Impactor::Shape::Sphere;
+    im.center = vec("center");
+    im.radius = s.number("radius", std::nullopt, positive());
+    im.mass = s.number("mass", std::nullopt, positive());
+    if (s.has("velocity")) im.velocity = vec("velocity");
+    im.stiffness_factor = s.number("stiffness_factor", im.stiffness_factor, [](double v) {
+      return (v > 0 && v <= 1000) ? std::string() : std::string("must be in (0, 1000] (times c)");
+    });
+    if (im.shape == Impactor::Shape::Cylinder) {
+      im.half_length = 0.5 * s.number("length", std::nullopt, positive());
+      const Vec3 a = vec("axis");
+      if (!(norm(a) > 0)) s.fail("axis", "the cylinder's axis must be a non-zero vector");
+      im.axis = scale(a, 1.0 / norm(a));
+    } else {
+      for (const char* k : {"length", "axis"})
+        if (s.has(k)) s.fail(k, "a sphere has no length or axis (shape: cylinder has)");
+    }
+    if (dk.dim == 1) s.fail("shape", "impactors strike 2D and 3D bodies");
+    if (dk.solver != Deck::SolverType::Explicit)
+      s.fail("", "impactors move in explicit runs (solver.type: explicit)");
+    if (dk.multirate)
+      s.fail("", "an impactor touches any node; it needs every node on every step (remove "
+                 "solver.multirate)");
+    s.finish();
+    dk.impactors.push_back(im);
+  }
   const Formulation f = *Formulation::named(dk.formulation, dk.dual_horizon);
   if (dk.pdro.enabled && !f.takes_overlay())
     top.fail("damage", f.dual_horizon

@@ -18,6 +18,7 @@
 #include "material/formulation.hpp"
 #include "material/lps.hpp"
 #include "material/contact.hpp"
+#include "material/impactor.hpp"
 #include "material/micromodulus.hpp"
 #include "overlay/pdro.hpp"
 #include "model/time_function.hpp"
@@ -83,6 +84,7 @@ struct Model {
   SurfaceCorrection surface_correction = SurfaceCorrection::None;
   PdroSpec pdro;              // refinement overlay for bond failure (PMB)
   ContactSpec contact;        // short-range repulsion between nodes (material/contact.hpp)
+  std::vector<Impactor> impactors;  // rigid bodies that strike it (material/impactor.hpp)
   mutable LpsScratch lps_scratch;  // per-node weighted volume and dilatation (LPS)
   // With track_breakable_stretch (the stretch trigger, row-local forces): each row's largest
   // stretch of its intact breakable bonds, from its latest force pass.

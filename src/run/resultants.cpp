@@ -30,6 +30,14 @@ std::string resultant_header(const Model& m) {
   };
   for (const BodyLoad& l : m.loads) add(column_name("load_", l.name));
   for (const PrescribedMotion& p : m.motions) add(column_name("bc_", p.name));
+  // Impactors: the force each exerts on the body, its position and its velocity.
+  for (std::size_t k = 1; k <= m.impactors.size(); ++k)
+    for (const char* what : {"_f%_N,", "_%_m,", "_v%_m_s,"})
+      for (int d = 0; d < m.nodes.dim; ++d) {
+        std::string col = fmt::format("impactor{}{}", k, what);
+        col.replace(col.find('%'), 1, 1, axes[d]);
+        h += col;
+      }
   return h;
 }
 
@@ -55,6 +63,9 @@ std::string resultant_columns(const Model& m,
   };
   for (const BodyLoad& l : m.loads) add(applied(l), mean_displacement(m.nodes, l.nodes));
   for (const PrescribedMotion& p : m.motions) add(reaction(p), mean_displacement(m.nodes, p.nodes));
+  for (const Impactor& im : m.impactors)
+    for (const Vec3& v : {scale(im.force, -1.0), im.center, im.velocity})
+      for (int d = 0; d < m.nodes.dim; ++d) c += fmt::format("{:.9e},", v[d]);
   return c;
 }
 

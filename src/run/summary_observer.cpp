@@ -113,6 +113,13 @@ void SummaryObserver::finish(RunView& view, RunResult& res) {
                        {"position", {ns.x[0][e.node], ns.x[1][e.node], ns.x[2][e.node]}},
                        {"reason", e.what}};
   }
+  for (const Impactor& im : m.impactors) {
+    auto vec = [&](const Vec3& v) { return std::vector<double>(v.begin(), v.begin() + ns.dim); };
+    j["impactors"].push_back({{"center_m", vec(im.center)},
+                              {"velocity_m_s", vec(im.velocity)},
+                              {"force_on_body_N", vec(scale(im.force, -1.0))},
+                              {"kinetic_energy_J", im.kinetic_energy()}});
+  }
   if (m.pdro.enabled) {
     const double checks = static_cast<double>(m.pdro.counters->checks.load());
     j["overlay"] = {{"n", m.pdro.n},

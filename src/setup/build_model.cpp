@@ -90,6 +90,7 @@ Model build_model(const Deck& dk) {
   m.damage_enabled = dk.damage;
   m.pdro = dk.pdro;
   m.contact = dk.contact;
+  m.impactors = dk.impactors;
   // Own counters and scratch: models built from one deck must not share them.
   m.pdro.counters = std::make_shared<PdroCounters>();
   m.pdro.visible_beta = std::make_shared<std::vector<float>>();

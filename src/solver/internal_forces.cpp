@@ -1,6 +1,7 @@
 #include "solver/internal_forces.hpp"
 
 #include "material/contact.hpp"
+#include "material/impactor.hpp"
 #include "material/lps_dual.hpp"
 #include "material/pmb.hpp"
 #include "material/pmb_dual.hpp"
@@ -60,6 +61,7 @@ std::size_t internal_forces(Model& m, bool allow_breaking, std::vector<std::uint
                             std::vector<double>* W) {
   const std::size_t broken = material_forces(m, allow_breaking, log, W);
   if (m.contact.enabled) add_contact_forces(m.contact, m.nodes, nullptr, W);
+  if (!m.impactors.empty()) add_impactor_forces(m.impactors, m.nodes, nullptr, W);
   return broken;
 }
 
@@ -67,6 +69,7 @@ std::size_t internal_forces_rows(Model& m, bool allow_breaking, const std::vecto
                                  std::vector<std::uint64_t>* log, std::vector<double>* W) {
   const std::size_t broken = row_local_forces(m, allow_breaking, log, W, &rows);
   if (m.contact.enabled) add_contact_forces(m.contact, m.nodes, &rows, W);
+  if (!m.impactors.empty()) add_impactor_forces(m.impactors, m.nodes, &rows, W);
   return broken;
 }
 
@@ -91,6 +94,7 @@ void material_energy_density(const Model& m, std::vector<double>& W) {
 void energy_density(const Model& m, std::vector<double>& W) {
   material_energy_density(m, W);
   if (m.contact.enabled) add_contact_energy(m.contact, m.nodes, W);
+  if (!m.impactors.empty()) add_impactor_energy(m.impactors, m.nodes, W);
 }
 
 // Contact forces are not in the stress: they act between nodes that the bonds do not join.

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "material/contact.hpp"
+#include "material/impactor.hpp"
 #include "material/pmb.hpp"
 
 namespace periadapt {
@@ -15,6 +16,9 @@ StableStep stable_time_step(const Model& model) {
   if (model.contact.enabled)
     for (std::size_t i = 0; i < K.size(); ++i)
       if (model.nodes.flags[i] & kActive) K[i] += contact_stiffness_bound(model.contact, model.nodes, i);
+  if (!model.impactors.empty())
+    for (std::size_t i = 0; i < K.size(); ++i)
+      if (model.nodes.flags[i] & kActive) K[i] += impactor_stiffness_bound(model.impactors, model.nodes, i);
   StableStep best{std::numeric_limits<double>::infinity(), 0};
   for (std::size_t i = 0; i < K.size(); ++i) {
     if (!(model.nodes.flags[i] & kActive) || K[i] <= 0) continue;
@@ -31,7 +35,8 @@ StableStep stable_time_step(const Model& model, const std::vector<std::uint32_t>
   for (std::uint32_t i : nodes) {
     if (!(ns.flags[i] & kActive)) continue;
     const double k = pmb_stiffness_row(ns, bf, model.material.shape, i) +
-                     (model.contact.enabled ? contact_stiffness_bound(model.contact, ns, i) : 0.0);
+                     (model.contact.enabled ? contact_stiffness_bound(model.contact, ns, i) : 0.0) +
+                     impactor_stiffness_bound(model.impactors, ns, i);
     if (!(k > 0)) continue;
     const double dt = std::sqrt(2.0 * ns.density[i] / k);
     if (dt < best.dt) best = {dt, i};

@@ -515,6 +515,7 @@ void VelocityVerlet::undo_last_step() {
   last_power_ = saved_.last_power;
   broken_total_ = saved_.broken_total;
   bond_evals_ = saved_.bond_evals;
+  m_.impactors = saved_.impactors;
 }
 
 std::vector<std::uint32_t> VelocityVerlet::rows_damaged_by_last_step() const {
@@ -553,11 +554,20 @@ bool VelocityVerlet::step() {
     saved_.bond_evals = bond_evals_;
     saved_.broken_log.clear();
     if (m_.bonds.keeps_state) saved_.bond_state = m_.bonds.state;
+    saved_.impactors = m_.impactors;
   }
   for (std::size_t q = 0; q < fixed_dofs_.size(); ++q)
     v_prev_fixed_[q] = ns.v[fixed_dofs_[q] % 3][fixed_dofs_[q] / 3];
   // Multi-rate stepping: this step's kicks per rate and the rows whose step closes now.
   prepare_rates();
+  // Rigid impactors: the same kick and drift as the nodes. What they lose in kinetic energy is
+  // work done on the body (external_work).
+  double impactor_energy = 0;
+  for (Impactor& im : m_.impactors) {
+    impactor_energy += im.kinetic_energy();
+    im.velocity = add(im.velocity, scale(im.force, hdt / im.mass));
+    im.center = add(im.center, scale(im.velocity, dt));
+  }
 
   // Half-step velocity, then positions; motions with prescribed velocity use v(t + dt/2).
   const double lim = runaway_limit_;
@@ -615,8 +625,12 @@ bool VelocityVerlet::step() {
   else
     compute_accelerations(nullptr, false, true);
   impose_motions(time_, true);
+  for (Impactor& im : m_.impactors) {
+    im.velocity = add(im.velocity, scale(im.force, hdt / im.mass));
+    impactor_energy -= im.kinetic_energy();
+  }
   const double p = external_power();
-  external_work_ += 0.5 * (p + last_power_) * dt;
+  external_work_ += 0.5 * (p + last_power_) * dt + impactor_energy;
   last_power_ = p;
   return true;
 }

@@ -154,6 +154,7 @@ class VelocityVerlet {
     std::array<std::vector<double>, 3> u, v, a;
     std::vector<double> broken_weight, v_prev_fixed, reaction;
     double time = 0, external_work = 0, last_power = 0, bond_evals = 0;
+    std::vector<Impactor> impactors;
     long step = 0;
     std::size_t broken_total = 0;
     std::vector<std::uint64_t> broken_log;

@@ -41,6 +41,7 @@ void VelocityVerlet::save_state(ArchiveWriter& w) const {
   w.put(reaction_);
   w.put(body_);
   w.put(v_prev_fixed_);
+  w.put(m_.impactors);
 }
 
 void VelocityVerlet::restore_state(ArchiveReader& r) {
@@ -82,6 +83,11 @@ void VelocityVerlet::restore_state(ArchiveReader& r) {
   r.get(reaction_);
   r.get(body_);
   r.get(v_prev_fixed_);
+  std::vector<Impactor> impactors;
+  r.get(impactors);
+  if (impactors.size() != m_.impactors.size())
+    throw ArchiveError("the checkpoint and the deck differ in their impactors");
+  m_.impactors = impactors;
   saved_ = Saved{};
 }
 
