@@ -8,7 +8,7 @@
 # of 6.1): adaptive level 1. Both 2D branching studies also at the printed 22 MPa. Plate with a
 # hole 6.3: models A, B, C (h = 15, 10, 5 mm). Grid orientation (ch. 5): uniform m = 3 on grids
 # turned 0-40 deg, LPS, m = 5-7 references, AGRS (m- and delta-m-convergence) on 5-40 deg grids.
-# Usage: scripts/fracture-report.sh [OUT] (about 16 min on 2 cores, 5 of them the uniform 0.5 mm
+# Usage: scripts/fracture-report.sh [OUT] (about 25 min on 2 cores, 11 of them the uniform 0.5 mm
 # m = 6 grid-orientation reference).
 set -euo pipefail
 cd "$(dirname "$0")/.."
