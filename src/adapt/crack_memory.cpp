@@ -148,7 +148,8 @@ std::vector<std::uint32_t> rebuild_families(Model& m, const CrackMemory& mem,
   if (global) std::fill(rebuild.begin(), rebuild.end(), 1);
   apply_surface_correction(ns, bf, m.material.shape,
                            p_wave_modulus(D, m.material.plane, m.material.E, m.material.nu),
-                           m.surface_correction, m.formulation.state_based());
+                           m.surface_correction, m.formulation.state_based(),
+                           block_uniaxial_moduli(m));
   apply_precracks(ns, bf, m.cracks, &rebuild);
   CellGrid* fgrid = nullptr;
   std::vector<double> fx[3];

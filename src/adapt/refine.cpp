@@ -25,20 +25,27 @@ double level_horizon(const Model& m, const AdaptSpec& spec, int level) {
   return m.horizon;
 }
 
-double brittle_critical_stretch(const Model& m, double c0, double delta) {
-  const MaterialLaw& mat = m.material;
+double brittle_critical_stretch(const Model& m, const MaterialLaw& mat, double c0, double delta) {
   return m.formulation.state_based()
              ? lps_critical_stretch(m.nodes.dim, mat.lps_constants, delta, mat.G0)
              : critical_stretch_from_g0(m.nodes.dim, mat.shape, c0, delta, mat.thickness, mat.G0);
 }
 
-double breaking_stretch(const Model& m, double c0, double delta) {
-  const double sb = brittle_critical_stretch(m, c0, delta);
+double brittle_critical_stretch(const Model& m, double c0, double delta) {
+  return brittle_critical_stretch(m, m.material, c0, delta);
+}
+
+double breaking_stretch(const Model& m, const MaterialLaw& mat, double c0, double delta) {
+  const double sb = brittle_critical_stretch(m, mat, c0, delta);
   // A history law's onset is a stress, the same at every horizon; its breaking stretch follows
   // the brittle one so that a crack still dissipates G0.
   return m.formulation.keeps_bond_history()
-             ? m.formulation.law->breaking_stretch(sb, m.material.onset_stretch)
+             ? m.formulation.law->breaking_stretch(sb, mat.onset_stretch)
              : sb;
+}
+
+double breaking_stretch(const Model& m, double c0, double delta) {
+  return breaking_stretch(m, m.material, c0, delta);
 }
 
 double micromodulus_factor(const Model& m, double m_level) {
@@ -56,7 +63,7 @@ std::vector<double> level_micromodulus_factors(const Model& m, const AdaptSpec& 
 }
 
 void scale_material_to_horizon(Model& m, std::size_t i, double factor) {
-  const MaterialLaw& mat = m.material;
+  const MaterialLaw& mat = node_material(m, i);
   NodeSet& ns = m.nodes;
   const double d = ns.horizon[i];
   const double c0 = micromodulus_c0(ns.dim, mat.plane, mat.shape, mat.bb_equivalent_E, d, mat.thickness);
@@ -64,7 +71,7 @@ void scale_material_to_horizon(Model& m, std::size_t i, double factor) {
   // The breaking stretch is the analytic one: calibration changes the stiffness, not the strain
   // at which a bond fails.
   if (mat.G0 > 0)
-    ns.critical_stretch[i] = breaking_stretch(m, c0, d);
+    ns.critical_stretch[i] = breaking_stretch(m, mat, c0, d);
   else if (std::isfinite(mat.s0))
     // s0 given directly: keep the fracture energy it implies at the base horizon (s0 ~ delta^-1/2).
     ns.critical_stretch[i] = mat.s0 * std::sqrt(m.horizon / d);
@@ -162,6 +169,7 @@ RefineStats refine_nodes(Model& m, std::vector<std::uint32_t> parents, const Ada
       ns.level[q] = static_cast<std::int8_t>(level);
       ns.parent[q] = static_cast<std::int32_t>(p);
       ns.density[q] = ns.density[p];
+      if (!ns.block.empty()) ns.block[q] = ns.block[p];
       ns.flags[q] = static_cast<std::uint8_t>(kActive | (ns.flags[p] & kNoFail));
       for (int d = 0; d < D; ++d) {
         ns.u[d][q] = kid.u[d];

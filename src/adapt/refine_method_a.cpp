@@ -107,6 +107,7 @@ RefineStats refine_nodes_method_a(Model& m, std::vector<std::uint32_t> parents,
     ns.level[q] = static_cast<std::int8_t>(ns.level[p] + 1);
     ns.parent[q] = static_cast<std::int32_t>(p);
     ns.density[q] = ns.density[p];
+    if (!ns.block.empty()) ns.block[q] = ns.block[p];
     ns.flags[q] = static_cast<std::uint8_t>(kActive | (ns.flags[p] & kNoFail));
     for (int d = 0; d < D; ++d) {
       ns.u[d][q] = rep.u[d] / n;

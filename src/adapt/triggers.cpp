@@ -96,6 +96,20 @@ std::vector<std::uint32_t> stretch_trigger(const Model& m, const AdaptSpec& spec
     const float* bt = bf.beta.data();
     // (|y| / |xi|)^2 of the intact breakable bonds, largest of the row (branch-free so that it
     // vectorizes: broken bonds have beta < 0, unbreakable ones 1/|xi| < 0).
+    if (m.block_pairs.active()) {
+      // Several materials: each bond's stretch in units of s0_i / s0_ij (material/blocks.hpp).
+      const double* isf = m.block_pairs.inv_stretch_row(ns.block[i]);
+      double sn = -INFINITY;
+      for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {
+        if (!(bt[k] > 0.0f) || !(inv_len[k] > 0.0)) continue;
+        const std::size_t j = 4 * static_cast<std::size_t>(nbr[k]);
+        const double d0 = yp[j] - yi0, d1 = yp[j + 1] - yi1, d2 = yp[j + 2] - yi2;
+        const double s = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2) * inv_len[k] - 1.0 - eth;
+        sn = std::max(sn, s * isf[ns.block[nbr[k]]]);
+      }
+      hot[i] = sn >= limit;
+      continue;
+    }
     double q = 0;
 #pragma omp simd reduction(max : q)
     for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {

@@ -1,4 +1,5 @@
 // periadapt: command-line entry (run, check).
+#include <algorithm>
 #include <omp.h>
 
 #include <filesystem>
@@ -63,6 +64,13 @@ int check(const std::string& path, const std::vector<std::string>& overrides,
                  ? fmt::format(" (nodes: x {:.5f}, lattice calibration)", m.nodes.micromodulus[0] / mat.c0)
                  : std::string());
   if (mat.G0 > 0) fmt::print("fracture energy G0 = {:.6g} J/m^2\n", mat.G0);
+  for (std::size_t b = 1; b < m.block_materials.size(); ++b) {
+    const MaterialLaw& l = m.block_materials[b];
+    fmt::print("block           {}: E = {:.6g} Pa, rho = {:.6g} kg/m^3, nu = {:.6g}, {}s0 = {:.6e}, "
+               "{} nodes\n",
+               l.name, l.E, l.rho, l.nu, l.G0 > 0 ? fmt::format("G0 = {:.6g} J/m^2, ", l.G0) : "",
+               l.s0, std::count(m.nodes.block.begin(), m.nodes.block.end(), b));
+  }
   if (m.formulation.keeps_bond_history())
     fmt::print("{}    {:.6g} Pa: onset stretch {:.6e}\n", m.formulation.law->stress_key, dk.law_stress,
                mat.onset_stretch);

@@ -36,6 +36,8 @@ struct NodeSet {
   std::vector<std::int8_t> level;
   std::vector<std::int32_t> parent;  // refinement parent (-1 for nodes of the initial grid)
   std::vector<std::uint8_t> flags;
+  // Material block of each node (several materials, Model::block_materials); empty for one.
+  std::vector<std::uint8_t> block;
 
   std::size_t size() const { return volume.size(); }
 
@@ -60,6 +62,7 @@ struct NodeSet {
     level.push_back(0);
     parent.push_back(-1);
     flags.push_back(kActive);
+    if (!block.empty()) block.push_back(0);
     return volume.size() - 1;
   }
 

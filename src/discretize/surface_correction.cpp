@@ -30,11 +30,17 @@ void unit_direction(const NodeSet& ns, const BondFamilies& bf, std::size_t i, st
   for (int d = 0; d < ns.dim; ++d) n[d] = (ns.x[d][j] - ns.x[d][i]) / L;
 }
 
-void energy_method(const NodeSet& ns, BondFamilies& bf, InfluenceShape shape, double M) {
+// The uniaxial modulus of node i: M, or its block's.
+double node_modulus(const NodeSet& ns, double M, const std::vector<double>& block_modulus,
+                    std::size_t i) {
+  return block_modulus.empty() ? M : block_modulus[ns.block[i]];
+}
+
+void energy_method(const NodeSet& ns, BondFamilies& bf, InfluenceShape shape, double M,
+                   const std::vector<double>& block_modulus) {
   const int D = ns.dim;
   const std::size_t n = ns.size();
   std::vector<double> g(3 * n, 1.0);
-  const double w_classical = 0.5 * M;  // unit strain
 #pragma omp parallel for schedule(dynamic, 256)
   for (std::size_t i = 0; i < n; ++i) {
     if (!(ns.flags[i] & kActive)) continue;
@@ -45,6 +51,7 @@ void energy_method(const NodeSet& ns, BondFamilies& bf, InfluenceShape shape, do
       const double wt = energy_weight(ns, bf, shape, i, k);
       for (int d = 0; d < D; ++d) w[d] += wt * nv[d] * nv[d] * nv[d] * nv[d];
     }
+    const double w_classical = 0.5 * node_modulus(ns, M, block_modulus, i);  // unit strain
     for (int d = 0; d < D; ++d) {
       const double wpd = 0.25 * ns.micromodulus[i] * w[d];
       g[3 * i + d] = wpd > 0 ? w_classical / wpd : 1.0;
@@ -148,6 +155,7 @@ struct MomentBasis {
 };
 
 void moment_method(const NodeSet& ns, BondFamilies& bf, InfluenceShape shape, double M,
+                   const std::vector<double>& block_modulus,
                    bool state_based) {
   const int D = ns.dim;
   const MomentBasis basis(D, state_based);
@@ -178,7 +186,7 @@ void moment_method(const NodeSet& ns, BondFamilies& bf, InfluenceShape shape, do
         const int Tb = b.size();
         Eigen::Matrix<double, 15, 15> A = Eigen::Matrix<double, 15, 15>::Zero();
         Eigen::Matrix<double, 15, 1> r = Eigen::Matrix<double, 15, 1>::Zero();
-        double axial = 2.0 * M / ns.micromodulus[i], m_i = 0;
+        double axial = 2.0 * node_modulus(ns, M, block_modulus, i) / ns.micromodulus[i], m_i = 0;
         for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {
           double nv[3], gb[15], mb[15];
           unit_direction(ns, bf, i, k, nv);
@@ -243,12 +251,13 @@ void moment_method(const NodeSet& ns, BondFamilies& bf, InfluenceShape shape, do
 }  // namespace
 
 void apply_surface_correction(const NodeSet& ns, BondFamilies& bf, InfluenceShape shape, double M,
-                              SurfaceCorrection method, bool state_based) {
+                              SurfaceCorrection method, bool state_based,
+                              const std::vector<double>& block_modulus) {
   if (method == SurfaceCorrection::None) return;
   if (method == SurfaceCorrection::Moments && ns.dim > 1)
-    moment_method(ns, bf, shape, M, state_based);
+    moment_method(ns, bf, shape, M, block_modulus, state_based);
   else
-    energy_method(ns, bf, shape, M);
+    energy_method(ns, bf, shape, M, block_modulus);
 }
 
 }  // namespace periadapt

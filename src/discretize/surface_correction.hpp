@@ -31,10 +31,12 @@ enum class SurfaceCorrection { None, Energy, Moments };
 // methods coincide there). `state_based` (LPS): the moments method makes the moments of the
 // weighted volume (w x^2 V) isotropic relative to m instead of matching the bond-based energy,
 // which gives the LPS node the exact dilatation and the classical energy of every homogeneous
-// strain; the energy method is the bond-based one either way.
+// strain; the energy method is the bond-based one either way. `block_modulus`: with several
+// materials, the uniaxial modulus of each block (node i's is block_modulus[nodes.block[i]]).
 void apply_surface_correction(const NodeSet& nodes, BondFamilies& bonds, InfluenceShape shape,
                               double uniaxial_modulus,
                               SurfaceCorrection method = SurfaceCorrection::Energy,
-                              bool state_based = false);
+                              bool state_based = false,
+                              const std::vector<double>& block_modulus = {});
 
 }  // namespace periadapt

@@ -130,6 +130,7 @@ Deck parse_deck_sections(const std::string& text, const std::string& name,
   deck_sections::parse_discretization_and_cracks(top, dk);
   deck_sections::parse_loading_and_damage(top, dk);
   deck_sections::parse_solver(top, dk);
+  deck_sections::parse_blocks(top, dk);
   deck_sections::parse_adapt(top, dk);
   deck_sections::parse_output(top, dk);
   top.finish();

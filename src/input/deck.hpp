@@ -42,6 +42,14 @@ struct LoadDisplacementPlot {
   int component = 0;
 };
 
+// A part of the body with its own material (deck list `blocks`).
+struct BlockSpec {
+  std::string name;
+  Shape region;
+  double E = 0, rho = 0;
+  std::optional<double> nu, G0, s0;
+};
+
 struct NamedRegion {
   std::string name;
   Shape region;
@@ -84,6 +92,9 @@ struct Deck {
   double thermal_strain = 0.0;  // alpha dT, subtracted from every bond stretch
   double law_stress = 0.0;      // a history law's stress key (yield_stress, peak_stress)
   InfluenceShape shape = InfluenceShape::Constant;
+  // Parts with their own material; a node takes the last block whose region holds it, the
+  // material above where none does.
+  std::vector<BlockSpec> blocks;
   // discretization
   GridSpec grid;
   double horizon_factor = 3.0;  // m = delta / dx

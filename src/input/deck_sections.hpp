@@ -19,6 +19,7 @@ void parse_model_and_material(Section& top, Deck& dk);
 void parse_discretization_and_cracks(Section& top, Deck& dk);
 void parse_loading_and_damage(Section& top, Deck& dk);
 void parse_solver(Section& top, Deck& dk);  // also the rules joining solver, material and damage
+void parse_blocks(Section& top, Deck& dk);  // after the solver (pairing, solver type)
 void parse_adapt(Section& top, Deck& dk);
 void parse_output(Section& top, Deck& dk);  // after the loads and motions it may name
 

@@ -80,14 +80,16 @@ void dilatation(const NodeSet& ns, const BondFamilies& bf, const LpsConstants& c
     sc.m[i] = m;
     sc.theta[i] = theta;
     double* p = &sc.packed[4 * i];
-    p[0] = m > 0 ? c.D * c.kappa * theta / m : 0.0;
-    p[1] = m > 0 ? c.alpha * c.mu / m : 0.0;
+    const LpsConstants& ci = node_constants(c, sc, ns, i);
+    p[0] = m > 0 ? c.D * ci.kappa * theta / m : 0.0;
+    p[1] = m > 0 ? c.alpha * ci.mu / m : 0.0;
     p[2] = theta / c.D;
     p[3] = inv_delta;
   }
 }
 
-template <int D, InfluenceShape S, bool E>
+// B: several materials: stretches compared as s * isf by the far end's block.
+template <int D, InfluenceShape S, bool E, bool B>
 std::size_t forces(NodeSet& ns, BondFamilies& bf, const LpsConstants& c, bool allow_breaking,
                    LpsScratch& sc, std::vector<std::uint64_t>* log, double* W, const PdroSpec* pdro) {
   dilatation<D, S, true>(ns, bf, c, sc);
@@ -98,6 +100,8 @@ std::size_t forces(NodeSet& ns, BondFamilies& bf, const LpsConstants& c, bool al
   const std::uint32_t* nbr = bf.neighbor.data();
   const double* inv_len = bf.inv_length.data();
   float* beta = bf.beta.data();
+  const std::uint8_t* blk = B ? ns.block.data() : nullptr;
+  const std::size_t nblocks = sc.block_constants.size();
   std::size_t broken_total = 0;
 #pragma omp parallel for schedule(dynamic, 512) reduction(+ : broken_total)
   for (std::size_t i = 0; i < n; ++i) {
@@ -106,6 +110,7 @@ std::size_t forces(NodeSet& ns, BondFamilies& bf, const LpsConstants& c, bool al
     const double yi0 = yp[4 * i], yi1 = D > 1 ? yp[4 * i + 1] : 0.0, yi2 = D > 2 ? yp[4 * i + 2] : 0.0;
     const double s0 = (allow_breaking && !(ns.flags[i] & kNoFail)) ? ns.critical_stretch[i] : INFINITY;
     const std::uint64_t kb = bf.begin(i), ke = bf.end(i);
+    const double* isf = B ? sc.block_inv_stretch.data() + blk[i] * nblocks : nullptr;
     double a0 = 0, a1 = 0, a2 = 0, wdev = 0, smax = -INFINITY;
     // Fast pass: t_ij + t_ji of intact bonds and the largest stretch; nothing written per bond.
 #pragma omp simd reduction(+ : a0, a1, a2, wdev) reduction(max : smax)
@@ -131,7 +136,8 @@ std::size_t forces(NodeSet& ns, BondFamilies& bf, const LpsConstants& c, bool al
       a1 += fr * d1;
       a2 += fr * d2;
       if constexpr (E) wdev += wi * edi * edi * bp * yp[j + 3];
-      const double s = e * ail;
+      double s = e * ail;
+      if constexpr (B) s *= isf[blk[nbr[k]]];
       smax = smax > (bp > 0.0 ? s : -INFINITY) ? smax : (bp > 0.0 ? s : -INFINITY);
     }
     if (smax > s0) {
@@ -148,7 +154,7 @@ std::size_t forces(NodeSet& ns, BondFamilies& bf, const LpsConstants& c, bool al
         const double x = 1.0 / std::abs(inv_len[k]);
         const double e = r - x;
         const double V = yp[j + 3] * static_cast<double>(b);
-        if (inv_len[k] > 0.0 && e > s0 * x && (!pdro || pdro_bond_breaks(ns, bf, i, k, s0, *pdro))) {
+        if (inv_len[k] > 0.0 && (B ? e * isf[blk[nbr[k]]] : e) > s0 * x && (!pdro || pdro_bond_breaks(ns, bf, i, k, s0, *pdro))) {
           beta[k] = -b;
           bw += V;
           ++nb;
@@ -178,22 +184,23 @@ std::size_t forces(NodeSet& ns, BondFamilies& bf, const LpsConstants& c, bool al
     ns.f[0][i] = a0;
     if constexpr (D > 1) ns.f[1][i] = a1;
     if constexpr (D > 2) ns.f[2][i] = a2;
-    if constexpr (E) W[i] = 0.5 * c.kappa * sc.theta[i] * sc.theta[i] + 0.5 * Bi * wdev;
+    if constexpr (E)
+      W[i] = 0.5 * node_constants(c, sc, ns, i).kappa * sc.theta[i] * sc.theta[i] + 0.5 * Bi * wdev;
   }
   return broken_total;
 }
 
-template <int D, bool E>
+template <int D, bool E, bool B>
 std::size_t forces_shape(InfluenceShape s, NodeSet& ns, BondFamilies& bf, const LpsConstants& c,
                          bool brk, LpsScratch& sc, std::vector<std::uint64_t>* log, double* W,
                          const PdroSpec* pdro) {
   switch (s) {
     case InfluenceShape::Constant:
-      return forces<D, InfluenceShape::Constant, E>(ns, bf, c, brk, sc, log, W, pdro);
+      return forces<D, InfluenceShape::Constant, E, B>(ns, bf, c, brk, sc, log, W, pdro);
     case InfluenceShape::Triangular:
-      return forces<D, InfluenceShape::Triangular, E>(ns, bf, c, brk, sc, log, W, pdro);
+      return forces<D, InfluenceShape::Triangular, E, B>(ns, bf, c, brk, sc, log, W, pdro);
     default:
-      return forces<D, InfluenceShape::InvertedTriangular, E>(ns, bf, c, brk, sc, log, W, pdro);
+      return forces<D, InfluenceShape::InvertedTriangular, E, B>(ns, bf, c, brk, sc, log, W, pdro);
   }
 }
 
@@ -201,8 +208,11 @@ template <bool E>
 std::size_t forces_dim(InfluenceShape s, NodeSet& ns, BondFamilies& bf, const LpsConstants& c,
                        bool brk, LpsScratch& sc, std::vector<std::uint64_t>* log, double* W,
                        const PdroSpec* pdro) {
-  return ns.dim == 3 ? forces_shape<3, E>(s, ns, bf, c, brk, sc, log, W, pdro)
-                     : forces_shape<2, E>(s, ns, bf, c, brk, sc, log, W, pdro);
+  if (!sc.block_constants.empty())
+    return ns.dim == 3 ? forces_shape<3, E, true>(s, ns, bf, c, brk, sc, log, W, pdro)
+                       : forces_shape<2, E, true>(s, ns, bf, c, brk, sc, log, W, pdro);
+  return ns.dim == 3 ? forces_shape<3, E, false>(s, ns, bf, c, brk, sc, log, W, pdro)
+                     : forces_shape<2, E, false>(s, ns, bf, c, brk, sc, log, W, pdro);
 }
 
 }  // namespace
@@ -244,7 +254,8 @@ void energy(const NodeSet& ns, const BondFamilies& bf, const LpsConstants& c,
       if (!Mutual || x <= sc.reach[bf.neighbor[k]])
         wdev += omega<S>(x * idi) * ed * ed * yp[j + 3] * static_cast<double>(b);
     }
-    W[i] = 0.5 * c.kappa * sc.theta[i] * sc.theta[i] + 0.5 * sc.packed[4 * i + 1] * wdev;
+    W[i] = 0.5 * node_constants(c, sc, ns, i).kappa * sc.theta[i] * sc.theta[i] +
+           0.5 * sc.packed[4 * i + 1] * wdev;
   }
 }
 

@@ -50,7 +50,18 @@ struct LpsScratch {
   std::vector<double> reach;
   // Packed per node for the force pass: [D kappa theta / m, alpha mu / m, theta / D, 1/delta].
   std::vector<double> packed;
+  // Several materials (material/blocks.hpp; empty for one): each block's constants, so a node's
+  // state uses its own block's moduli, and the pair table inv_stretch of the blocks (a bond from
+  // block a to b breaks when its stretch times block_inv_stretch[a * count + b] exceeds s0_i).
+  std::vector<LpsConstants> block_constants;
+  std::vector<double> block_inv_stretch;
 };
+
+// The constants of node i's state.
+inline const LpsConstants& node_constants(const LpsConstants& c, const LpsScratch& sc,
+                                          const NodeSet& ns, std::size_t i) {
+  return sc.block_constants.empty() ? c : sc.block_constants[ns.block[i]];
+}
 
 // Force densities (and bond breaking, broken-bond log, energy density, refinement overlay as
 // for PMB).

@@ -7,6 +7,7 @@
 
 #include "core/bond_families.hpp"
 #include "core/node_set.hpp"
+#include "material/blocks.hpp"
 #include "material/micromodulus.hpp"
 #include "overlay/pdro.hpp"
 
@@ -28,30 +29,35 @@ struct PmbStepStats {
 // others keep theirs.
 // `breakable_stretch`: also the largest stretch of each computed row's intact breakable bonds
 // (the stretch trigger's measure, from the same sweep; -inf for a row without such a bond).
+// `pairs`: several materials (material/blocks.hpp): each bond's micromodulus and critical stretch
+// by the blocks of its two ends; stretches (breakable_stretch too) in units of s0_i / s0_ij.
 PmbStepStats pmb_forces(NodeSet& nodes, BondFamilies& bonds, InfluenceShape shape,
                         bool allow_breaking, std::vector<std::uint64_t>* broken_log = nullptr,
                         std::vector<double>* W = nullptr, const PdroSpec* pdro = nullptr,
                         double thermal_strain = 0.0,
                         const std::vector<std::uint32_t>* rows = nullptr,
-                        std::vector<double>* breakable_stretch = nullptr);
+                        std::vector<double>* breakable_stretch = nullptr,
+                        const BlockPairs* pairs = nullptr);
 
 // Strain-energy density W_i = 1/4 sum_j c_i g s^2 xi beta_j V_j over intact bonds (thesis 2.14).
 // `rows`: only these nodes' densities are computed; the others keep theirs.
 void pmb_energy_density(const NodeSet& nodes, const BondFamilies& bonds, InfluenceShape shape,
                         std::vector<double>& W, double thermal_strain = 0.0,
-                        const std::vector<std::uint32_t>* rows = nullptr);
+                        const std::vector<std::uint32_t>* rows = nullptr,
+                        const BlockPairs* pairs = nullptr);
 
 // sum_j c_i g beta_j V_j / xi: the stiffness sum of the Silling-Askari stable-step bound.
 void pmb_stiffness_sum(const NodeSet& nodes, const BondFamilies& bonds, InfluenceShape shape,
-                       std::vector<double>& K);
+                       std::vector<double>& K, const BlockPairs* pairs = nullptr);
 // The same sum for one node.
 double pmb_stiffness_row(const NodeSet& nodes, const BondFamilies& bonds, InfluenceShape shape,
-                         std::size_t i);
+                         std::size_t i, const BlockPairs* pairs = nullptr);
 
 // Stress of every node, sigma_i = dW_i / d(eps) for the energy density above:
 // 1/2 sum_j c_i g s beta_j V_j e_ij (x) xi_ij over intact bonds (the bond-based stress; the
 // classical stress of a homogeneous strain where W_i is classical). Row-major 3 x 3 per node.
 void pmb_stress(const NodeSet& nodes, const BondFamilies& bonds, InfluenceShape shape,
-                std::vector<double>& sigma, double thermal_strain = 0.0);
+                std::vector<double>& sigma, double thermal_strain = 0.0,
+                const BlockPairs* pairs = nullptr);
 
 }  // namespace periadapt

@@ -19,6 +19,8 @@
 #include "material/lps.hpp"
 #include "material/contact.hpp"
 #include "material/impactor.hpp"
+#include "material/material_law.hpp"
+#include "material/blocks.hpp"
 #include "material/micromodulus.hpp"
 #include "overlay/pdro.hpp"
 #include "model/time_function.hpp"
@@ -40,33 +42,17 @@ struct PrescribedMotion {
   Shape region;  // where it applies (children created inside it inherit it)
 };
 
-struct MaterialLaw {
-  std::string name = "material";
-  double E = 0, nu = 0, rho = 0;
-  double G0 = 0;                 // 0 when s0 was given directly
-  double s0 = 0;
-  double c0 = 0;
-  double wave_speed = 0;         // P-wave speed for reports
-  double thermal_strain = 0;     // alpha dT (PMB): bond stretch s - alpha dT
-  InfluenceShape shape = InfluenceShape::Constant;
-  PlaneCondition plane = PlaneCondition::None;
-  double thickness = 1.0;
-  LpsConstants lps_constants;  // the LPS formulation's moduli
-  double onset_stretch = INFINITY;  // where a history law leaves its elastic branch
-  // Young's modulus of the bond-based material with the same P-wave modulus: its micromodulus
-  // (stored per node) drives the stable time step and the relaxation masses for both models.
-  double bb_equivalent_E = 0;
-  // Micromoduli divided by the quadrature's bulk lattice moment at each level's m
-  // (discretization.micromodulus_calibration: lattice), so that every level has the bond
-  // stiffness of the continuum and levels of different m meet without an impedance jump.
-  bool lattice_calibration = false;
-};
 
 struct Model {
   NodeSet nodes;
   BondFamilies bonds;
   Formulation formulation;  // which force model, and what it can do
   MaterialLaw material;
+  // Several materials (deck list blocks): one law per block, [0] = `material`, and the rules of
+  // bonds between blocks (material/blocks.hpp); empty for one material. Node i's block is
+  // nodes.block[i].
+  std::vector<MaterialLaw> block_materials;
+  BlockPairs block_pairs;
   bool damage_enabled = true;
   std::vector<BodyLoad> loads;
   std::vector<PrescribedMotion> motions;
@@ -92,10 +78,24 @@ struct Model {
   std::vector<double> breakable_stretch;
 };
 
+// The law of node i's block.
+inline const MaterialLaw& node_material(const Model& m, std::size_t i) {
+  return m.nodes.block.empty() ? m.material : m.block_materials[m.nodes.block[i]];
+}
+
+// The uniaxial (P-wave) modulus of every block; empty for one material.
+inline std::vector<double> block_uniaxial_moduli(const Model& m) {
+  std::vector<double> out;
+  for (const MaterialLaw& l : m.block_materials)
+    out.push_back(p_wave_modulus(m.nodes.dim, l.plane, l.E, l.nu));
+  return out;
+}
+
 // Bytes per node for memory reports: the node arrays, the bond-row index and, with loads, the
 // solver's body-force densities.
 inline std::size_t model_bytes_per_node(const Model& m) {
   return NodeSet::bytes_per_node() + m.bonds.row_index_bytes_per_node() +
+         (m.nodes.block.empty() ? 0 : sizeof(std::uint8_t)) +
          (m.loads.empty() ? 0 : 3 * sizeof(double));
 }
 

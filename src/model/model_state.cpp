@@ -24,6 +24,7 @@ void node_arrays(Archive& a, NS& ns) {
   a(ns.level);
   a(ns.parent);
   a(ns.flags);
+  a(ns.block);
 }
 
 template <class Archive, class BF>
@@ -93,6 +94,10 @@ void restore_model_state(ArchiveReader& r, Model& m) {
                         m.nodes.broken_weight.size(), m.nodes.family_weight.size(),
                         m.nodes.level.size(), m.nodes.parent.size(), m.nodes.flags.size()})
     consistent = consistent && s == n;
+  consistent = consistent && (m.nodes.block.empty() || m.nodes.block.size() == n) &&
+               m.nodes.block.empty() == m.block_materials.empty();
+  for (std::uint8_t b : m.nodes.block)
+    consistent = consistent && b < m.block_materials.size();
   if (!consistent) throw ArchiveError("the checkpoint's node arrays differ in length (corrupt)");
   r.tag("BOND");
   m.bonds = BondFamilies{};  // its capacity is the checkpoint's, not the fresh build's

@@ -8,7 +8,7 @@
 
 namespace periadapt {
 
-inline constexpr std::uint32_t kCheckpointFormat = 2;
+inline constexpr std::uint32_t kCheckpointFormat = 3;
 inline constexpr const char* kCheckpointName = "checkpoint.bin";
 
 struct CheckpointInfo {

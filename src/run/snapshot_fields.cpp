@@ -27,6 +27,11 @@ std::vector<PointField> snapshot_fields(const Model& m, const std::vector<double
   for (std::size_t i = 0; i < n; ++i) lvl.data[i] = ns.level[i];
   f.push_back(std::move(lvl));
   f.push_back({"volume", 1, ns.volume});
+  if (!ns.block.empty()) {
+    PointField blk{"block", 1, std::vector<double>(n)};
+    for (std::size_t i = 0; i < n; ++i) blk.data[i] = ns.block[i];
+    f.push_back(std::move(blk));
+  }
   if (!stress) return f;
   PointField sig{"stress", 9, {}};
   stress_density(m, sig.data);

@@ -83,7 +83,7 @@ RunResult run_static(const Deck& dk, const RunOptions& opt) {
   {
     const auto K = assemble_bond_stiffness(
         ns, m.bonds, m.material.shape,
-        dk.dual_horizon ? BondPairing::DualHorizon : BondPairing::SourceHorizon);
+        dk.dual_horizon ? BondPairing::DualHorizon : BondPairing::SourceHorizon, &m.block_pairs);
     const int D = ns.dim;
     Eigen::VectorXd u(static_cast<Eigen::Index>(D * ns.size()));
     for (std::size_t i = 0; i < ns.size(); ++i)

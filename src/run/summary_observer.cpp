@@ -102,6 +102,19 @@ void SummaryObserver::finish(RunView& view, RunResult& res) {
     j["material"]["formulation"] = m.formulation.name();
     j["material"]["onset_stretch"] = m.material.onset_stretch;
   }
+  if (!m.block_materials.empty()) {
+    // Block 0 is the material section; counts are of the active nodes at the end.
+    std::vector<std::size_t> count(m.block_materials.size(), 0);
+    for (std::size_t i = 0; i < ns.size(); ++i)
+      if (ns.flags[i] & kActive) ++count[ns.block[i]];
+    nlohmann::json blocks = nlohmann::json::array();
+    for (std::size_t b = 0; b < m.block_materials.size(); ++b) {
+      const MaterialLaw& l = m.block_materials[b];
+      blocks.push_back({{"name", l.name}, {"E", l.E}, {"nu", l.nu}, {"rho", l.rho}, {"G0", l.G0},
+                        {"s0", l.s0}, {"wave_speed_m_s", l.wave_speed}, {"nodes", count[b]}});
+    }
+    j["blocks"] = blocks;
+  }
   j["grid"] = {{"spacing", m.grid_spacing}, {"horizon", m.horizon}};
   if (tot.status == "diverged") {
     const DivergenceError& e = vv.divergence();

@@ -27,6 +27,47 @@ std::vector<std::uint32_t> select(const NodeSet& ns, const Shape& region, double
   return out;
 }
 
+// The laws of the deck's blocks ([0]: the material section's), the rules of the bonds between
+// them, and each node's block (the last block whose region holds it).
+void assign_blocks(const Deck& dk, Model& m, double tol) {
+  const MaterialLaw& base = m.material;
+  const bool lps = m.formulation.state_based();
+  m.block_materials.assign(1, base);
+  for (const BlockSpec& b : dk.blocks) {
+    MaterialLaw law = base;
+    law.name = b.name;
+    law.E = b.E;
+    law.rho = b.rho;
+    law.bb_equivalent_E = b.E;
+    if (lps) {
+      law.nu = *b.nu;
+      law.lps_constants = lps_constants(dk.dim, dk.plane, b.E, law.nu);
+      law.bb_equivalent_E = p_wave_modulus(dk.dim, dk.plane, b.E, law.nu) /
+                            p_wave_modulus(dk.dim, dk.plane, 1.0, bond_based_poisson(dk.dim, dk.plane));
+    }
+    law.c0 = micromodulus_c0(dk.dim, dk.plane, dk.shape, law.bb_equivalent_E, dk.horizon, dk.thickness);
+    law.G0 = b.G0.value_or(0.0);
+    law.s0 = b.G0 ? breaking_stretch(m, law, law.c0, dk.horizon) : b.s0.value_or(INFINITY);
+    law.wave_speed = std::sqrt(p_wave_modulus(dk.dim, dk.plane, b.E, law.nu) / b.rho);
+    m.block_materials.push_back(std::move(law));
+  }
+  m.block_pairs = block_pair_rules(m.block_materials, dk.dim, lps, dk.horizon);
+  if (lps) {
+    for (const MaterialLaw& law : m.block_materials)
+      m.lps_scratch.block_constants.push_back(law.lps_constants);
+    m.lps_scratch.block_inv_stretch = m.block_pairs.inv_stretch;
+  }
+  NodeSet& ns = m.nodes;
+  ns.block.assign(ns.size(), 0);
+  for (std::size_t r = 0; r < dk.blocks.size(); ++r) {
+    const std::vector<std::uint32_t> nodes = select(ns, dk.blocks[r].region, tol);
+    if (nodes.empty())
+      throw DeckError(dk.file, 0, 0, "blocks[" + std::to_string(r) + "].region",
+                      "the region selects no nodes");
+    for (std::uint32_t i : nodes) ns.block[i] = static_cast<std::uint8_t>(r + 1);
+  }
+}
+
 }  // namespace
 
 Model build_model(const Deck& dk) {
@@ -80,12 +121,15 @@ Model build_model(const Deck& dk) {
   mat.wave_speed = std::sqrt(p_wave_modulus(dk.dim, dk.plane, dk.E, mat.nu) / dk.rho);
   mat.lattice_calibration = dk.lattice_calibration;
   m.quadrature.rule = dk.quadrature;
-  const double c0_nodes = mat.c0 * micromodulus_factor(m, dk.horizon_factor);
+  const double tol = 1e-9 * dk.grid.spacing;
+  if (!dk.blocks.empty()) assign_blocks(dk, m, tol);
+  const double calibration = micromodulus_factor(m, dk.horizon_factor);
   for (std::size_t i = 0; i < ns.size(); ++i) {
+    const MaterialLaw& law = node_material(m, i);
     ns.horizon[i] = dk.horizon;
-    ns.density[i] = dk.rho;
-    ns.micromodulus[i] = c0_nodes;
-    ns.critical_stretch[i] = mat.s0;
+    ns.density[i] = law.rho;
+    ns.micromodulus[i] = law.c0 * calibration;
+    ns.critical_stretch[i] = law.s0;
   }
   m.damage_enabled = dk.damage;
   m.pdro = dk.pdro;
@@ -108,7 +152,8 @@ Model build_model(const Deck& dk) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   m.surface_correction = dk.surface_correction;
   apply_surface_correction(ns, m.bonds, dk.shape, p_wave_modulus(dk.dim, dk.plane, dk.E, mat.nu),
-                           m.surface_correction, m.formulation.state_based());
+                           m.surface_correction, m.formulation.state_based(),
+                           block_uniaxial_moduli(m));
   m.precrack_bonds = apply_precracks(ns, m.bonds, dk.cracks);
   update_damage_weights(ns, m.bonds);
   m.quadrature = qs;
@@ -119,7 +164,6 @@ Model build_model(const Deck& dk) {
   m.holes = dk.grid.holes;
   m.body_clip = dk.grid.clip;
 
-  const double tol = 1e-9 * dk.grid.spacing;
   for (std::size_t r = 0; r < dk.no_fail.size(); ++r)
     for (std::uint32_t i : select(ns, dk.no_fail[r], tol)) ns.flags[i] |= kNoFail;
   mark_unbreakable_bonds(ns, m.bonds);

@@ -39,7 +39,7 @@ bool run_dynamic_relaxation(Model& m, const RelaxationOptions& opt,
         }
   // Fictitious density: Gershgorin bound of the tangent stiffness row (unit pseudo time step).
   std::vector<double> K, lambda(n, 0.0);
-  pmb_stiffness_sum(ns, m.bonds, m.material.shape, K);
+  pmb_stiffness_sum(ns, m.bonds, m.material.shape, K, &m.block_pairs);
   for (std::size_t i = 0; i < n; ++i) lambda[i] = std::max(0.5 * D * K[i], 1e-300);
 
   std::vector<double> F_prev(3 * n, 0.0);

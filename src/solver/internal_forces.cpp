@@ -35,7 +35,7 @@ std::size_t row_local_forces(Model& m, bool allow_breaking, std::vector<std::uin
     return m.formulation.law->forces(m.nodes, m.bonds, c);
   }
   return pmb_forces(m.nodes, m.bonds, m.material.shape, allow_breaking, log, W, &m.pdro,
-                    m.material.thermal_strain, rows, stretch)
+                    m.material.thermal_strain, rows, stretch, &m.block_pairs)
       .newly_broken;
 }
 
@@ -84,7 +84,8 @@ void material_energy_density(const Model& m, std::vector<double>& W) {
                          m.lps_scratch, W, !m.formulation.dual_horizon);
       return;
     case Kind::Pmb:
-      pmb_energy_density(m.nodes, m.bonds, m.material.shape, W, m.material.thermal_strain);
+      pmb_energy_density(m.nodes, m.bonds, m.material.shape, W, m.material.thermal_strain,
+                         nullptr, &m.block_pairs);
       return;
   }
 }
@@ -108,7 +109,8 @@ void stress_density(const Model& m, std::vector<double>& sigma) {
                  sigma, !m.formulation.dual_horizon);
       return;
     case Kind::Pmb:
-      pmb_stress(m.nodes, m.bonds, m.material.shape, sigma, m.material.thermal_strain);
+      pmb_stress(m.nodes, m.bonds, m.material.shape, sigma, m.material.thermal_strain,
+                 &m.block_pairs);
       return;
   }
 }

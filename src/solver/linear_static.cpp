@@ -20,8 +20,9 @@ using RowMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor>;
 }  // namespace
 
 RowMatrix assemble_bond_stiffness(const NodeSet& ns, const BondFamilies& bf, InfluenceShape shape,
-                                  BondPairing pairing) {
+                                  BondPairing pairing, const BlockPairs* pairs) {
   const int D = ns.dim;
+  const bool blocks = pairs && pairs->active();
   const std::size_t n = ns.size();
   const auto rows = static_cast<Eigen::Index>(static_cast<std::size_t>(D) * n);
   // S: off-diagonal blocks a_ij = c_i g(|xi|/delta_i) beta_ij / |xi| e e^T of the intact bonds of
@@ -35,8 +36,9 @@ RowMatrix assemble_bond_stiffness(const NodeSet& ns, const BondFamilies& bf, Inf
       const double L = bf.length(k);
       double e[3] = {0, 0, 0};
       for (int d = 0; d < D; ++d) e[d] = (ns.x[d][j] - ns.x[d][i]) / L;
-      const double w = ns.micromodulus[i] * influence(shape, std::min(1.0, L / ns.horizon[i])) *
-                       static_cast<double>(bf.beta[k]) / L;
+      double w = ns.micromodulus[i] * influence(shape, std::min(1.0, L / ns.horizon[i])) *
+                 static_cast<double>(bf.beta[k]) / L;
+      if (blocks) w *= pairs->stiffness_row(ns.block[i])[ns.block[j]];
       for (int a = 0; a < D; ++a)
         for (int b = 0; b < D; ++b)
           trip.emplace_back(static_cast<Eigen::Index>(D * i + a),
@@ -131,7 +133,7 @@ StaticResult solve_linear_static(Model& m, const std::vector<DisplacementConstra
   }
 
   const auto t0 = clock::now();
-  RowMatrix K = assemble_bond_stiffness(ns, m.bonds, m.material.shape, opt.pairing);
+  RowMatrix K = assemble_bond_stiffness(ns, m.bonds, m.material.shape, opt.pairing, &m.block_pairs);
   Eigen::VectorXd f = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(rows));
   for (const BodyLoad& l : m.loads) {
     const double amp = l.amplitude(1e300);  // final value of the load history

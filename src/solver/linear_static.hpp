@@ -58,7 +58,8 @@ class SingularSystem : public std::runtime_error {
 Eigen::SparseMatrix<double, Eigen::RowMajor> assemble_bond_stiffness(const NodeSet& nodes,
                                                                      const BondFamilies& bonds,
                                                                      InfluenceShape shape,
-                                                                     BondPairing pairing);
+                                                                     BondPairing pairing,
+                                                                     const BlockPairs* pairs = nullptr);
 
 // Displacement constraints of the model's prescribed-displacement regions (expressions at t = 0).
 std::vector<DisplacementConstraint> model_constraints(const Model& m);

@@ -12,7 +12,7 @@ namespace periadapt {
 
 StableStep stable_time_step(const Model& model) {
   std::vector<double> K;
-  pmb_stiffness_sum(model.nodes, model.bonds, model.material.shape, K);
+  pmb_stiffness_sum(model.nodes, model.bonds, model.material.shape, K, &model.block_pairs);
   if (model.contact.enabled)
     for (std::size_t i = 0; i < K.size(); ++i)
       if (model.nodes.flags[i] & kActive) K[i] += contact_stiffness_bound(model.contact, model.nodes, i);
@@ -34,7 +34,7 @@ StableStep stable_time_step(const Model& model, const std::vector<std::uint32_t>
   StableStep best{std::numeric_limits<double>::infinity(), 0};
   for (std::uint32_t i : nodes) {
     if (!(ns.flags[i] & kActive)) continue;
-    const double k = pmb_stiffness_row(ns, bf, model.material.shape, i) +
+    const double k = pmb_stiffness_row(ns, bf, model.material.shape, i, &model.block_pairs) +
                      (model.contact.enabled ? contact_stiffness_bound(model.contact, ns, i) : 0.0) +
                      impactor_stiffness_bound(model.impactors, ns, i);
     if (!(k > 0)) continue;

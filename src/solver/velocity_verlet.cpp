@@ -254,10 +254,10 @@ void VelocityVerlet::classify_rates(const std::vector<std::uint32_t>* rows) {
   };
   if (rows) {
     for (std::uint32_t i : *rows)
-      sort_node(i, pmb_stiffness_row(ns, m_.bonds, m_.material.shape, i));
+      sort_node(i, pmb_stiffness_row(ns, m_.bonds, m_.material.shape, i, &m_.block_pairs));
   } else {
     std::vector<double> K;
-    pmb_stiffness_sum(ns, m_.bonds, m_.material.shape, K);
+    pmb_stiffness_sum(ns, m_.bonds, m_.material.shape, K, &m_.block_pairs);
     for (std::size_t i = 0; i < ns.size(); ++i) sort_node(i, K[i]);
   }
   std::sort(pending_.begin(), pending_.end());
@@ -354,7 +354,7 @@ void VelocityVerlet::compute_accelerations(const std::vector<std::uint32_t>* row
   if (subcycle && want_energy) {
     gather_rows(step_, false, idle_rows_);
     pmb_energy_density(ns, m_.bonds, m_.material.shape, energy_, m_.material.thermal_strain,
-                       &idle_rows_);
+                       &idle_rows_, &m_.block_pairs);
   }
   energy_step_ = want_energy && (!partial || energy_kept) ? step_ : -1;
   // Multi-rate: a pass also writes its rows' densities (the same sweep), so that each row holds
