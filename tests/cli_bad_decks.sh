@@ -18,6 +18,10 @@ check lattice_lps.yaml "lattice_lps.yaml:6:29: key 'discretization.micromodulus_
 check contact_static.yaml "contact_static.yaml:9:12: key 'contact.enabled': contact forces are for explicit runs"
 check impactor_axis.yaml "impactor_axis.yaml:9:78: key 'impactors[0].axis': a sphere has no length or axis"
 check body_outside.yaml "body_outside.yaml:5:9: key 'discretization.body': the body cannot be an outside (complement) region"
+check blocks_dual_horizon.yaml "blocks_dual_horizon.yaml:5:3: key 'blocks': several materials work with bond_pairing: source_horizon"
+check blocks_poisson_pmb.yaml "blocks_poisson_pmb.yaml:6:93: key 'blocks[0].material.poisson_ratio': the bond-based PMB model fixes Poisson's ratio of every block"
+check blocks_no_nodes.yaml "blocks_no_nodes.yaml:6:13: key 'blocks[0].region': the region selects no nodes"
+check blocks_no_fracture.yaml "blocks_no_fracture.yaml:6:15: key 'blocks[0].material': damage is enabled: give this block's fracture_energy"
 # run refuses a time step above the finest level's stable step; so must check.
 check adapt_time_step.yaml "adapt_time_step.yaml: key 'solver.time_step': 1.5e-07 s exceeds the stable step expected at refinement level 1"
 check list_key.yaml "list_key.yaml:2:1: a key must be a plain name"

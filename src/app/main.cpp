@@ -64,6 +64,11 @@ int check(const std::string& path, const std::vector<std::string>& overrides,
                  ? fmt::format(" (nodes: x {:.5f}, lattice calibration)", m.nodes.micromodulus[0] / mat.c0)
                  : std::string());
   if (mat.G0 > 0) fmt::print("fracture energy G0 = {:.6g} J/m^2\n", mat.G0);
+  if (m.formulation.keeps_bond_history())
+    fmt::print("{}    {:.6g} Pa: onset stretch {:.6e}\n", m.formulation.law->stress_key, dk.law_stress,
+               mat.onset_stretch);
+  fmt::print("{} s0 = {:.6e}{}\n", m.formulation.keeps_bond_history() ? "breaking stretch" : "critical stretch", mat.s0,
+             dk.damage ? "" : " (damage disabled)");
   for (std::size_t b = 1; b < m.block_materials.size(); ++b) {
     const MaterialLaw& l = m.block_materials[b];
     fmt::print("block           {}: E = {:.6g} Pa, rho = {:.6g} kg/m^3, nu = {:.6g}, {}s0 = {:.6e}, "
@@ -71,11 +76,6 @@ int check(const std::string& path, const std::vector<std::string>& overrides,
                l.name, l.E, l.rho, l.nu, l.G0 > 0 ? fmt::format("G0 = {:.6g} J/m^2, ", l.G0) : "",
                l.s0, std::count(m.nodes.block.begin(), m.nodes.block.end(), b));
   }
-  if (m.formulation.keeps_bond_history())
-    fmt::print("{}    {:.6g} Pa: onset stretch {:.6e}\n", m.formulation.law->stress_key, dk.law_stress,
-               mat.onset_stretch);
-  fmt::print("{} s0 = {:.6e}{}\n", m.formulation.keeps_bond_history() ? "breaking stretch" : "critical stretch", mat.s0,
-             dk.damage ? "" : " (damage disabled)");
   fmt::print("grid            spacing {:.6g} m, horizon {:.6g} m (m = {:.4g}), rotation {:.6g} deg, "
              "quadrature {}\n",
              dk.grid.spacing, dk.horizon, dk.horizon_factor, dk.grid.rotation_deg,

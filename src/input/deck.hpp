@@ -48,6 +48,7 @@ struct BlockSpec {
   Shape region;
   double E = 0, rho = 0;
   std::optional<double> nu, G0, s0;
+  int line = 0, column = 0;  // of its region key (errors found when the grid exists)
 };
 
 struct NamedRegion {

@@ -33,6 +33,10 @@ void parse_blocks(Section& top, Deck& dk) {
   for (Section b : list) {
     BlockSpec bs;
     bs.name = b.text("name", b.path());
+    if (b.has("region")) {
+      const YAML::Mark mark = b.raw("region").Mark();
+      if (!mark.is_null()) bs.line = mark.line + 1, bs.column = mark.column + 1;
+    }
     bs.region = parse_region(b.section("region"), dk.dim);
     Section s = b.section("material");
     bs.E = s.number("youngs_modulus", std::nullopt, positive());

@@ -62,8 +62,10 @@ void assign_blocks(const Deck& dk, Model& m, double tol) {
   for (std::size_t r = 0; r < dk.blocks.size(); ++r) {
     const std::vector<std::uint32_t> nodes = select(ns, dk.blocks[r].region, tol);
     if (nodes.empty())
-      throw DeckError(dk.file, 0, 0, "blocks[" + std::to_string(r) + "].region",
-                      "the region selects no nodes");
+      throw DeckError(dk.file, dk.blocks[r].line, dk.blocks[r].column,
+                      "blocks[" + std::to_string(r) + "].region",
+                      "the region selects no nodes (a node belongs to a block when its cell "
+                      "centre lies inside the region)");
     for (std::uint32_t i : nodes) ns.block[i] = static_cast<std::uint8_t>(r + 1);
   }
 }
