@@ -8,6 +8,7 @@
 
 #include "adapt/adaptor.hpp"
 #include "adapt/refine.hpp"
+#include "input/deck_builder.hpp"
 #include "run/simulation.hpp"
 #include "setup/build_model.hpp"
 #include "solver/internal_forces.hpp"
@@ -20,38 +21,82 @@ using namespace periadapt;
 
 namespace {
 
-const char* kPlate =
-    "model: {dimension: 2, plane: stress}\n"
-    "material: {youngs_modulus: 72.0e9, density: 2440, fracture_energy: 135}\n"
-    "discretization: {spacing: 0.001, horizon_factor: 3, body: {box: {min: [0, 0], max: [0.03, "
-    "0.016]}}}\n"
-    "cracks: [{segment: [[0, 0.008], [0.0121, 0.008]]}]\n"
-    "solver: {time_step: 5.0e-8, steps: 10}\n";
+// A 30 x 16 mm glass plate with a pre-crack from its left edge.
+DeckBuilder plate() {
+  const std::vector<std::vector<double>> crack = {{0, 0.008}, {0.0121, 0.008}};
+  DeckBuilder d;
+  d.set("model.dimension", 2)
+      .set("model.plane", "stress")
+      .set("material.youngs_modulus", 72.0e9)
+      .set("material.density", 2440.0)
+      .set("material.fracture_energy", 135.0)
+      .set("discretization.spacing", 0.001)
+      .set("discretization.horizon_factor", 3.0)
+      .set("discretization.body.box.min", {0.0, 0.0})
+      .set("discretization.body.box.max", {0.03, 0.016})
+      .append("cracks", DeckBuilder().set("segment", crack))
+      .set("solver.time_step", 5.0e-8)
+      .set("solver.steps", 10);
+  return d;
+}
 
 // A 10 deg lattice cut by a horizontal pre-crack through the middle of a 40 x 20 mm plate.
-const char* kRotatedCrackedPlate =
-    "model: {dimension: 2, plane: stress}\n"
-    "material: {youngs_modulus: 72.0e9, density: 2440, fracture_energy: 135}\n"
-    "discretization: {spacing: 0.001, horizon_factor: 3, rotation_deg: 10, body: {box: {min: "
-    "[-0.02, -0.01], max: [0.02, 0.01]}}}\n"
-    "cracks: [{segment: [[-0.015, 0.0], [0.015, 0.0]]}]\n"
-    "solver: {time_step: 5.0e-8, steps: 10}\n";
+Deck rotated_cracked_plate() {
+  const std::vector<std::vector<double>> crack = {{-0.015, 0.0}, {0.015, 0.0}};
+  return DeckBuilder()
+      .set("model.dimension", 2)
+      .set("model.plane", "stress")
+      .set("material.youngs_modulus", 72.0e9)
+      .set("material.density", 2440.0)
+      .set("material.fracture_energy", 135.0)
+      .set("discretization.spacing", 0.001)
+      .set("discretization.horizon_factor", 3.0)
+      .set("discretization.rotation_deg", 10.0)
+      .set("discretization.body.box.min", {-0.02, -0.01})
+      .set("discretization.body.box.max", {0.02, 0.01})
+      .append("cracks", DeckBuilder().set("segment", crack))
+      .set("solver.time_step", 5.0e-8)
+      .set("solver.steps", 10)
+      .build("rotated lattice");
+}
 
 // A pre-cracked 40 mm x 20 mm glass plate pulled by edge tractions, with an adapt section.
-std::string cracked_plate_deck(double traction, const std::string& adapt, int steps) {
-  const std::string t = std::to_string(traction);
-  return "model: {dimension: 2, plane: stress}\n"
-         "material: {youngs_modulus: 72.0e9, density: 2440, fracture_energy: 135}\n"
-         "discretization: {spacing: 0.001, horizon_factor: 3, body: {box: {min: [0, 0], max: "
-         "[0.04, 0.02]}}}\n"
-         "cracks: [{segment: [[0, 0.01], [0.015, 0.01]]}]\n"
-         "loads:\n"
-         " - {type: traction, region: {box: {min: [0, 0.019], max: [0.04, 0.02]}}, value: [0, " + t + "]}\n"
-         " - {type: traction, region: {box: {min: [0, 0], max: [0.04, 0.001]}}, value: [0, -" + t + "]}\n"
-         "damage: {no_fail: [{box: {min: [0, 0.019], max: [0.04, 0.02]}}, {box: {min: [0, 0], "
-         "max: [0.04, 0.001]}}]}\n"
-         "adapt: " + adapt + "\n"
-         "solver: {time_step: 5.0e-8, steps: " + std::to_string(steps) + "}\n";
+DeckBuilder cracked_plate_deck(double traction, const DeckBuilder& adapt, int steps) {
+  const std::vector<std::vector<double>> crack = {{0, 0.01}, {0.015, 0.01}};
+  const DeckBuilder top = test::box({0.0, 0.019}, {0.04, 0.02});
+  const DeckBuilder bottom = test::box({0.0, 0.0}, {0.04, 0.001});
+  DeckBuilder d;
+  d.set("model.dimension", 2)
+      .set("model.plane", "stress")
+      .set("material.youngs_modulus", 72.0e9)
+      .set("material.density", 2440.0)
+      .set("material.fracture_energy", 135.0)
+      .set("discretization.spacing", 0.001)
+      .set("discretization.horizon_factor", 3.0)
+      .set("discretization.body.box.min", {0.0, 0.0})
+      .set("discretization.body.box.max", {0.04, 0.02})
+      .append("cracks", DeckBuilder().set("segment", crack))
+      .append("loads", DeckBuilder()
+                           .set("type", "traction")
+                           .set("region", top)
+                           .set("value", {0.0, traction}))
+      .append("loads", DeckBuilder()
+                           .set("type", "traction")
+                           .set("region", bottom)
+                           .set("value", {0.0, -traction}))
+      .append("damage.no_fail", top)
+      .append("damage.no_fail", bottom)
+      .set("adapt", adapt)
+      .set("solver.time_step", 5.0e-8)
+      .set("solver.steps", steps);
+  return d;
+}
+
+// An adapt section that refines to level 1 (the callers add its triggers).
+DeckBuilder level_one() {
+  DeckBuilder a;
+  a.set("max_level", 1);
+  return a;
 }
 
 // A smooth, non-uniform velocity field, so that interpolation has gradients to carry.
@@ -89,7 +134,7 @@ RefineStats refine_tip_block(Model& m) {
 // parents around the crack tip refined: where the partial-refresh tests start.
 struct TipEvent {
   Model m = build_model(
-      test::deck_from(cracked_plate_deck(14e6, "{max_level: 1, energy_trigger: 0.7}", 40)));
+      cracked_plate_deck(14e6, level_one().set("energy_trigger", 0.7), 40).build("cracked plate"));
   VelocityVerlet vv{m, 5e-8};
   RefineStats st;
   bool energy_before_event = false;  // the step's pass computed the densities
@@ -130,17 +175,21 @@ TEST(Adapt, RefreshOfTheRebuiltRowsKeepsTheReactionsOfAFullPass) {
   // full pass bit for bit, after a plain step and after an undone one (whose forces ns.f still
   // holds), and so must the next 20 steps and their external work (the refresh's reaction power
   // opens its trapezoid).
-  const std::string deck =
-      cracked_plate_deck(0.0, "{max_level: 1, energy_trigger: 0.7}", 60) +
-      "boundary_conditions: [{name: pull, region: {box: {min: [0, 0], max: [0.001, 0.02]}}, "
-      "velocity: ['-4.0e5 * t', null]}]\n";
+  const Deck deck =
+      cracked_plate_deck(0.0, level_one().set("energy_trigger", 0.7), 60)
+          .append("boundary_conditions",
+                  DeckBuilder()
+                      .set("name", "pull")
+                      .set("region", test::box({0.0, 0.0}, {0.001, 0.02}))
+                      .set("velocity", test::Components{"-4.0e5 * t", std::nullopt}))
+          .build("driven plate");
   for (bool undo : {false, true}) {
     struct Result {
       double work = 0;
       std::vector<double> a0, a1, u0;
     };
     auto run = [&](bool full) {
-      Model m = build_model(test::deck_from(deck));
+      Model m = build_model(deck);
       VelocityVerlet vv(m, 5e-8);
       vv.initialize();
       vv.set_undo(undo);
@@ -181,7 +230,7 @@ TEST(Adapt, EnergyDensitiesSurviveARowRefreshExactly) {
 }
 
 TEST(Adapt, RefinementConservesLinearMomentum) {
-  Model m = build_model(test::deck_from(kPlate));
+  Model m = build_model(plate().build("cracked plate"));
   NodeSet& ns = m.nodes;
   set_smooth_velocity(ns);
   AdaptSpec spec;
@@ -208,12 +257,19 @@ TEST(Adapt, RefiningAMirrorSymmetricStateKeepsItSymmetric) {
   // must be mirror images to round-off, whatever order the parents are processed in. (Fitting a
   // parent's gradient after its neighbours were switched off made the result order dependent:
   // the adaptive crack-branching run then grew asymmetric branches.)
-  Model m = build_model(test::deck_from(
-      "model: {dimension: 2, plane: stress}\n"
-      "material: {youngs_modulus: 72.0e9, density: 2440, fracture_energy: 135}\n"
-      "discretization: {spacing: 0.001, horizon_factor: 3, body: {box: {min: [0, 0], max: "
-      "[0.03, 0.016]}}}\n"
-      "solver: {time_step: 5.0e-8, steps: 10}\n"));
+  Model m = build_model(DeckBuilder()
+                            .set("model.dimension", 2)
+                            .set("model.plane", "stress")
+                            .set("material.youngs_modulus", 72.0e9)
+                            .set("material.density", 2440.0)
+                            .set("material.fracture_energy", 135.0)
+                            .set("discretization.spacing", 0.001)
+                            .set("discretization.horizon_factor", 3.0)
+                            .set("discretization.body.box.min", {0.0, 0.0})
+                            .set("discretization.body.box.max", {0.03, 0.016})
+                            .set("solver.time_step", 5.0e-8)
+                            .set("solver.steps", 10)
+                            .build("plate"));
   NodeSet& ns = m.nodes;
   const double yc = 0.008;
   for (std::size_t i = 0; i < ns.size(); ++i) {
@@ -254,7 +310,7 @@ TEST(Adapt, ChildrenAcrossAPreCrackTakeTheFieldOfTheirOwnFace) {
   // from their parent. With the faces pulled apart (u_y, v_y = +-1 above / below the line) each
   // child must carry its own face's field; anchored at the parent it got the other face's and
   // tore its bonds apart on the next step. Momentum is kept to round-off either way.
-  Model m = build_model(test::deck_from(kRotatedCrackedPlate));
+  Model m = build_model(rotated_cracked_plate());
   NodeSet& ns = m.nodes;
   for (std::size_t i = 0; i < ns.size(); ++i) {
     const double side = ns.x[1][i] > 0 ? 1.0 : -1.0;
@@ -297,7 +353,7 @@ TEST(Adapt, MethodAKeepsVolumeAndMomentumAndCutsInterfaceCellsByEq34) {
   // (169 - 36 = 133 new nodes, the parents kept), total volume unchanged, and the coarse
   // neighbours reduced by the overlap of the new cells: V_c - V_f for a side neighbour (j = 3 in
   // Eq. 3.4), V_c - V_f / 4 for a corner-diagonal one (j = 1), with V_f = V_c / 4.
-  Model m = build_model(test::deck_from(kPlate));
+  Model m = build_model(plate().build("cracked plate"));
   NodeSet& ns = m.nodes;
   set_smooth_velocity(ns);
   auto total_volume = [&] {
@@ -349,13 +405,11 @@ TEST(Adapt, FullyRefinedGridEqualsTheGridBuiltDirectly) {
   // Refining every node once with delta-scaling must give exactly the level-1 grid: same nodes,
   // volumes, horizons, micromoduli, critical stretches, bonds (pre-crack included), and the same
   // motion up to summation order.
-  Model a = build_model(test::deck_from(kPlate));
+  Model a = build_model(plate().build("cracked plate"));
   AdaptSpec spec;
   spec.enabled = true;
   refine_nodes(a, all_active(a), spec);
-  std::string fine = kPlate;
-  fine.replace(fine.find("spacing: 0.001"), 14, "spacing: 0.0005");
-  Model b = build_model(test::deck_from(fine));
+  Model b = build_model(plate().set("discretization.spacing", 0.0005).build("fine cracked plate"));
   const auto ia = all_active(a), ib = all_active(b);
   ASSERT_EQ(ia.size(), ib.size());
   auto key = [](const NodeSet& ns, std::uint32_t i) {
@@ -410,8 +464,8 @@ TEST(Adapt, FullyRefinedGridEqualsTheGridBuiltDirectly) {
 TEST(Adapt, WithTheDamageTriggerBondsBreakOnlyOnTheFinestLevel) {
   // A pre-cracked plate pulled hard: every bond that the dynamics breaks must belong to nodes
   // that could not be refined further (the step is undone and redone after refining).
-  const std::string yaml = cracked_plate_deck(60.0e6, "{max_level: 1, damage_trigger: true}", 200);
-  const Deck dk = test::deck_from(yaml);
+  const Deck dk = cracked_plate_deck(60.0e6, level_one().set("damage_trigger", true), 200)
+                      .build("cracked plate");
   Model m = build_model(dk);
   const std::size_t n0 = m.nodes.size();
   VelocityVerlet vv(m, 5.0e-8);
@@ -444,14 +498,22 @@ TEST(Adapt, DualHorizonPairingRemovesTheGhostForceOfScaledHorizons) {
   // bonds of the interface carry different micromoduli in their two directions. With source-
   // horizon pairing the internal forces no longer sum to zero (ghost forces, momentum is not
   // conserved); with dual-horizon pairing they cancel to round-off.
-  const std::string yaml =
-      "model: {dimension: 2, plane: stress}\n"
-      "material: {youngs_modulus: 1.0e9, density: 1000}\n"
-      "discretization: {spacing: 0.01, horizon_factor: 3, quadrature: ipa_hybrid,"
-      " body: {box: {min: [0, 0], max: [0.4, 0.2]}}}\n"
-      "adapt: {initial_refinement: [{region: {box: {min: [0, 0], max: [0.195, 0.2]}}, level: 1}]}\n"
-      "damage: {enabled: false}\nsolver: {type: static}\n";
-  Model m = build_model(test::deck_from(yaml));
+  Model m = build_model(
+      DeckBuilder()
+          .set("model.dimension", 2)
+          .set("model.plane", "stress")
+          .set("material.youngs_modulus", 1.0e9)
+          .set("material.density", 1000.0)
+          .set("discretization.spacing", 0.01)
+          .set("discretization.horizon_factor", 3.0)
+          .set("discretization.quadrature", "ipa_hybrid")
+          .set("discretization.body.box.min", {0.0, 0.0})
+          .set("discretization.body.box.max", {0.4, 0.2})
+          .append("adapt.initial_refinement",
+                  DeckBuilder().set("region", test::box({0.0, 0.0}, {0.195, 0.2})).set("level", 1))
+          .set("damage.enabled", false)
+          .set("solver.type", "static")
+          .build("half-refined plate"));
   const NodeSet& ns = m.nodes;
   std::size_t fine = 0;
   for (std::size_t i = 0; i < ns.size(); ++i) fine += (ns.flags[i] & kActive) && ns.level[i] == 1;
@@ -491,7 +553,7 @@ TEST(Adapt, RefiningToLevelTwoAndCoarseningBackRestoresTheGrid) {
   // A zone refined twice and coarsened twice must give back the original active nodes and bond
   // families exactly (positions, volumes, horizons, quadrature factors, pre-crack cuts), and
   // every coarsening must keep linear momentum.
-  Model m = build_model(test::deck_from(kPlate));
+  Model m = build_model(plate().build("cracked plate"));
   NodeSet& ns = m.nodes;
   for (std::size_t i = 0; i < ns.size(); ++i) ns.v[0][i] = 1.0 + ns.x[1][i];
   using Bond = std::tuple<long long, long long, long long, long long, float>;
@@ -542,17 +604,26 @@ TEST(Adapt, DualHorizonDynamicsConservesMomentumOnARefinedGrid) {
   double drift[2] = {0, 0};
   int v = 0;
   for (const char* pairing : {"source_horizon", "dual_horizon"}) {
-    const std::string yaml =
-        std::string("model: {dimension: 2, plane: stress}\n"
-                    "material: {youngs_modulus: 72.0e9, density: 2440, fracture_energy: 135}\n"
-                    "discretization: {spacing: 0.001, horizon_factor: 3, body: {box: {min: [0, 0], "
-                    "max: [0.03, 0.016]}}}\n"
-                    "initial_conditions: {velocity: ['5*sin(200*x)', '3*cos(150*y)']}\n"
-                    "adapt: {initial_refinement: [{region: {box: {min: [0, 0], max: [0.0145, 0.016]}}, "
-                    "level: 1}]}\n"
-                    "solver: {time_step: 2.0e-8, steps: 60, bond_pairing: ") +
-        pairing + "}\n";
-    const Deck dk = test::deck_from(yaml);
+    const Deck dk =
+        DeckBuilder()
+            .set("model.dimension", 2)
+            .set("model.plane", "stress")
+            .set("material.youngs_modulus", 72.0e9)
+            .set("material.density", 2440.0)
+            .set("material.fracture_energy", 135.0)
+            .set("discretization.spacing", 0.001)
+            .set("discretization.horizon_factor", 3.0)
+            .set("discretization.body.box.min", {0.0, 0.0})
+            .set("discretization.body.box.max", {0.03, 0.016})
+            .set("initial_conditions.velocity", test::Components{"5*sin(200*x)", "3*cos(150*y)"})
+            .append("adapt.initial_refinement",
+                    DeckBuilder()
+                        .set("region", test::box({0.0, 0.0}, {0.0145, 0.016}))
+                        .set("level", 1))
+            .set("solver.time_step", 2.0e-8)
+            .set("solver.steps", 60)
+            .set("solver.bond_pairing", pairing)
+            .build("half-refined plate");
     Model m = build_model(dk);
     drift[v++] = test::momentum_drift(m, 2e-8, 60);
   }
@@ -567,13 +638,13 @@ TEST(Adapt, DualHorizonDynamicsConservesMomentumOnARefinedGrid) {
 TEST(Adapt, LocalFamilyRebuildEqualsTheGlobalOne) {
   // Refinement rebuilds only the families within reach of the changed nodes; a run with the
   // whole model rebuilt at every event (PERIADAPT_GLOBAL_REBUILD) must give the same state.
-  const std::string yaml = cracked_plate_deck(
-      40.0e6, "{max_level: 1, energy_trigger: 0.5, damage_trigger: true}", 150);
+  const DeckBuilder deck = cracked_plate_deck(
+      40.0e6, level_one().set("energy_trigger", 0.5).set("damage_trigger", true), 150);
   std::vector<double> result[2];
   for (int global = 0; global < 2; ++global) {
     if (global) setenv("PERIADAPT_GLOBAL_REBUILD", "1", 1);
     else unsetenv("PERIADAPT_GLOBAL_REBUILD");
-    const Deck dk = test::deck_from(yaml);
+    const Deck dk = deck.build("cracked plate");
     Model m = build_model(dk);
     VelocityVerlet vv(m, 5.0e-8);
     vv.initialize();
@@ -595,21 +666,50 @@ TEST(Adapt, LocalFamilyRebuildEqualsTheGlobalOne) {
   }
 }
 
+namespace {
+
+// Bobaru 6.2.2's bar [0, 450] (triangular micromodulus, sub-cell quadrature) and its Gaussian.
+DeckBuilder pulse_bar(double spacing, double horizon) {
+  DeckBuilder d;
+  d.set("model.dimension", 1)
+      .set("material.youngs_modulus", 1.0)
+      .set("material.density", 1.0)
+      .set("material.micromodulus", "triangular")
+      .set("discretization.spacing", spacing)
+      .set("discretization.horizon", horizon)
+      .set("discretization.registration", "node_on_edge")
+      .set("discretization.quadrature", "subcell")
+      .set("discretization.body.box.min", {0.0})
+      .set("discretization.body.box.max", {450.0})
+      .set("initial_conditions.displacement", test::Components{"0.02*exp(-0.01*x^2)"})
+      .set("damage.enabled", false);
+  return d;
+}
+
+// A refined zone that follows the pulse: level 1, total-energy trigger at 75%, six horizons of
+// visibility, coarsening.
+DeckBuilder moving_zone() {
+  DeckBuilder a = level_one();
+  a.set("energy_trigger", 0.75)
+      .set("energy", "total")
+      .set("coarsen", true)
+      .set("visibility_factor", 6);
+  return a;
+}
+
+}  // namespace
+
 TEST(Adapt, RefinedZoneStaysAroundATravellingPulse) {
   // Bobaru 6.2.2: total-energy trigger at 75%, six horizons of visibility. Hot nodes that are
   // already refined still ask for the coarse nodes around them (thesis Fig. 3.4), so the refined
   // zone moves with the pulse and covers it on both sides; a zone that only grows from coarse hot
   // nodes trails behind the peak.
-  const Deck dk = test::deck_from(
-      "model: {dimension: 1}\n"
-      "material: {youngs_modulus: 1.0, density: 1.0, micromodulus: triangular}\n"
-      "discretization: {spacing: 1.0, horizon: 3.0, registration: node_on_edge, quadrature: "
-      "subcell, body: {box: {min: [0], max: [450]}}}\n"
-      "initial_conditions: {displacement: ['0.02*exp(-0.01*x^2)']}\n"
-      "damage: {enabled: false}\n"
-      "solver: {end_time: 200, time_step: 0.25, bond_pairing: dual_horizon}\n"
-      "adapt: {max_level: 1, energy_trigger: 0.75, energy: total, coarsen: true, "
-      "visibility_factor: 6}\n");
+  const Deck dk = pulse_bar(1.0, 3.0)
+                      .set("solver.end_time", 200.0)
+                      .set("solver.time_step", 0.25)
+                      .set("solver.bond_pairing", "dual_horizon")
+                      .set("adapt", moving_zone())
+                      .build("Bobaru bar");
   Model m = build_model(dk);
   VelocityVerlet vv(m, 0.25);
   vv.initialize();
@@ -637,16 +737,12 @@ TEST(Adapt, EnergyConservingEventsStopTheMovingZoneFromPumpingEnergy) {
   // one, so the total energy climbs (+8.4% by t = 100, +46% by t = 200); with
   // adapt.conserve_energy the rebuilt rows give back what each event changed (+0.36%).
   auto drift = [](bool conserve) {
-    const Deck dk = test::deck_from(
-        "model: {dimension: 1}\n"
-        "material: {youngs_modulus: 1.0, density: 1.0, micromodulus: triangular}\n"
-        "discretization: {spacing: 0.16666666666666666, horizon: 1.5, registration: node_on_edge, "
-        "quadrature: subcell, body: {box: {min: [0], max: [450]}}}\n"
-        "initial_conditions: {displacement: ['0.02*exp(-0.01*x^2)']}\n"
-        "damage: {enabled: false}\n"
-        "solver: {end_time: 100, time_step: 0.041666666666666664, bond_pairing: dual_horizon}\n"
-        "adapt: {max_level: 1, energy_trigger: 0.75, energy: total, coarsen: true, "
-        "visibility_factor: 6, conserve_energy: " + std::string(conserve ? "true" : "false") + "}\n");
+    const Deck dk = pulse_bar(0.16666666666666666, 1.5)
+                        .set("solver.end_time", 100.0)
+                        .set("solver.time_step", 0.041666666666666664)
+                        .set("solver.bond_pairing", "dual_horizon")
+                        .set("adapt", moving_zone().set("conserve_energy", conserve))
+                        .build("Bobaru bar");
     Model m = build_model(dk);
     VelocityVerlet vv(m, *dk.time_step);
     vv.initialize();
@@ -669,12 +765,18 @@ TEST(Adapt, RefinementIn3DKeepsACrackThatWasNotAPreCrack) {
   // so nothing re-cuts them): refining every node must not heal the cut. The broken bonds leave
   // small squares across themselves (crack facets); a child bond that passes through one starts
   // broken. Without facets every child bond across the plane would be intact.
-  Model m = build_model(test::deck_from(
-      "model: {dimension: 3}\n"
-      "material: {youngs_modulus: 72.0e9, density: 2440, fracture_energy: 135}\n"
-      "discretization: {spacing: 0.001, horizon_factor: 3, body: {box: {min: [0, 0, 0], max: "
-      "[0.008, 0.008, 0.008]}}}\n"
-      "solver: {time_step: 5.0e-8, steps: 10}\n"));
+  Model m = build_model(DeckBuilder()
+                            .set("model.dimension", 3)
+                            .set("material.youngs_modulus", 72.0e9)
+                            .set("material.density", 2440.0)
+                            .set("material.fracture_energy", 135.0)
+                            .set("discretization.spacing", 0.001)
+                            .set("discretization.horizon_factor", 3.0)
+                            .set("discretization.body.box.min", {0.0, 0.0, 0.0})
+                            .set("discretization.body.box.max", {0.008, 0.008, 0.008})
+                            .set("solver.time_step", 5.0e-8)
+                            .set("solver.steps", 10)
+                            .build("block"));
   NodeSet& ns = m.nodes;
   const double zc = 0.004;
   auto crosses = [&](std::size_t i, std::size_t j) {
@@ -723,7 +825,7 @@ TEST(Adapt, InterfaceHorizonsAfterSuccessiveEventsEqualABruteForceRecompute) {
   // refined node must still have the horizon the rule gives when applied to the whole grid:
   // m times the distance to its nearest coarser node within two of its spacings, never less
   // than its level's horizon.
-  Model m = build_model(test::deck_from(kPlate));
+  Model m = build_model(plate().build("cracked plate"));
   AdaptSpec spec;
   spec.enabled = true;
   spec.max_level = 2;
@@ -776,7 +878,7 @@ TEST(Adapt, ReanchoredChildrenKeepMomentumInAnUnbalancedField) {
   // 0.5 and 0.1 along) and the parent block sits off the crack line, so children re-anchored
   // across the crack take a velocity their parents did not have. The uniform shift of the new
   // nodes must give back the event's momentum exactly (to round-off of sum m |v|).
-  Model m = build_model(test::deck_from(kRotatedCrackedPlate));
+  Model m = build_model(rotated_cracked_plate());
   NodeSet& ns = m.nodes;
   for (std::size_t i = 0; i < ns.size(); ++i) {
     const bool up = ns.x[1][i] > 0;
@@ -800,16 +902,39 @@ TEST(Adapt, ReanchoredChildrenKeepMomentumInAnUnbalancedField) {
         << "component " << d;
 }
 
+namespace {
+
+// A 20 mm glass plate (1 mm, m = 3) whose bonds break at the stretch 1e-3.
+DeckBuilder brittle_plate() {
+  DeckBuilder d;
+  d.set("model.dimension", 2)
+      .set("material.youngs_modulus", 72.0e9)
+      .set("material.density", 2440.0)
+      .set("material.critical_stretch", 1.0e-3)
+      .set("discretization.spacing", 1.0e-3)
+      .set("discretization.horizon_factor", 3.0)
+      .set("discretization.body.box.min", {0.0, 0.0})
+      .set("discretization.body.box.max", {0.02, 0.02});
+  return d;
+}
+
+}  // namespace
+
 // Cracks stay fine: a parent whose child lost a bond to the dynamics (not to a pre-crack) is not
 // coarsenable, while its quiet neighbours are.
 TEST(Adapt, AParentWhoseChildHasADynamicallyBrokenBondIsNotCoarsened) {
-  Model m = build_model(test::deck_from(
-      "model: {dimension: 2}\n"
-      "material: {youngs_modulus: 72.0e9, density: 2440, critical_stretch: 1.0e-3}\n"
-      "discretization: {spacing: 1.0e-3, horizon_factor: 3, body: {box: {min: [0, 0], max: [0.02, 0.02]}}}\n"
-      "adapt: {max_level: 1, energy_trigger: 0.5, coarsen: true, visibility: false,"
-      " initial_refinement: [{region: {box: {min: [0.006, 0.006], max: [0.014, 0.014]}}, level: 1}]}\n"
-      "solver: {steps: 1}\n"));
+  Model m = build_model(
+      brittle_plate()
+          .set("adapt", level_one()
+                            .set("energy_trigger", 0.5)
+                            .set("coarsen", true)
+                            .set("visibility", false)
+                            .append("initial_refinement",
+                                    DeckBuilder()
+                                        .set("region", test::box({0.006, 0.006}, {0.014, 0.014}))
+                                        .set("level", 1)))
+          .set("solver.steps", 1)
+          .build("refined plate"));
   NodeSet& ns = m.nodes;
   const auto before = coarsenable_parents(m);
   ASSERT_GT(before.size(), 4u);
@@ -830,14 +955,15 @@ TEST(Adapt, AParentWhoseChildHasADynamicallyBrokenBondIsNotCoarsened) {
 // W_max of the energy trigger is taken over the nodes that can refine: a clamped or driven edge
 // (which never refines) with a large boundary-layer energy must not switch the trigger off.
 TEST(Adapt, EnergyTriggerIgnoresTheEnergyOfDrivenNodes) {
-  const Deck dk = test::deck_from(
-      "model: {dimension: 2}\n"
-      "material: {youngs_modulus: 72.0e9, density: 2440, critical_stretch: 1.0e-3}\n"
-      "discretization: {spacing: 1.0e-3, horizon_factor: 3, body: {box: {min: [0, 0], max: [0.02, 0.02]}}}\n"
-      "boundary_conditions:\n"
-      "  - {name: clamp, region: {box: {min: [0, 0], max: [0.002, 0.02]}}, velocity: [0, 0]}\n"
-      "adapt: {max_level: 1, energy_trigger: 0.5}\n"
-      "solver: {steps: 1}\n");
+  const Deck dk = brittle_plate()
+                      .append("boundary_conditions",
+                              DeckBuilder()
+                                  .set("name", "clamp")
+                                  .set("region", test::box({0.0, 0.0}, {0.002, 0.02}))
+                                  .set("velocity", test::Components{"0", "0"}))
+                      .set("adapt", level_one().set("energy_trigger", 0.5))
+                      .set("solver.steps", 1)
+                      .build("clamped plate");
   const Model m = build_model(dk);
   const NodeSet& ns = m.nodes;
   std::vector<double> W(ns.size(), 0.1);
@@ -858,13 +984,16 @@ TEST(Adapt, EnergyTriggerIgnoresTheEnergyOfDrivenNodes) {
 TEST(Adapt, ChildrenOfAGivenCriticalStretchKeepItsFractureEnergy) {
   for (const char* scaling : {"delta", "m"}) {
     SCOPED_TRACE(scaling);
-    const Model m = build_model(test::deck_from(
-        std::string("model: {dimension: 2}\n"
-                    "material: {youngs_modulus: 72.0e9, density: 2440, critical_stretch: 1.0e-3}\n"
-                    "discretization: {spacing: 1.0e-3, horizon_factor: 3, body: {box: {min: [0, 0], max: [0.02, 0.02]}}}\n"
-                    "adapt: {max_level: 2, scaling: ") + scaling +
-        ", initial_refinement: [{region: {box: {min: [0.008, 0.008], max: [0.012, 0.012]}}, level: 2}]}\n"
-        "solver: {steps: 1}\n"));
+    const Model m = build_model(
+        brittle_plate()
+            .set("adapt.max_level", 2)
+            .set("adapt.scaling", scaling)
+            .append("adapt.initial_refinement",
+                    DeckBuilder()
+                        .set("region", test::box({0.008, 0.008}, {0.012, 0.012}))
+                        .set("level", 2))
+            .set("solver.steps", 1)
+            .build("refined plate"));
     int seen[3] = {0, 0, 0};
     for (std::size_t i = 0; i < m.nodes.size(); ++i) {
       if (!(m.nodes.flags[i] & kActive)) continue;

@@ -9,6 +9,7 @@
 
 #include "adapt/refine.hpp"
 #include "adapt/triggers.hpp"
+#include "input/deck_builder.hpp"
 #include "run/simulation.hpp"
 #include "input/deck_error.hpp"
 #include "solver/velocity_verlet.hpp"
@@ -21,19 +22,35 @@ namespace {
 // A glass plate with a central hole, clamped along its bottom strip and pulled on its top strip
 // by a traction ramped over 10 us; no-fail strips 3 mm deep at both edges. `spacing` 1 mm is the
 // coarse grid, 0.5 mm the fine one.
-std::string plate(double spacing, double traction, const std::string& adapt = "") {
-  return "model: {dimension: 2, plane: stress}\n"
-         "material: {youngs_modulus: 72.0e9, density: 2440.0, fracture_energy: 10.0}\n"
-         "discretization:\n  spacing: " + std::to_string(spacing) +
-         "\n  body: {box: {min: [0, 0], max: [0.03, 0.03]}}\n"
-         "  holes: [{disk: {center: [0.015, 0.015], radius: 0.004}}]\n"
-         "boundary_conditions: [{name: clamp, region: {box: {min: [0, 0], max: [0.03, 0.001]}}, "
-         "displacement: [0, 0]}]\n"
-         "loads: [{name: pull, type: traction, region: {box: {min: [0, 0.029], max: [0.03, 0.03]}}, "
-         "value: [0, " + std::to_string(traction) + "], time: {function: ramp, end: 1.0e-5}}]\n"
-         "damage: {no_fail: [{box: {min: [0, 0], max: [0.03, 0.003]}}, "
-         "{box: {min: [0, 0.027], max: [0.03, 0.03]}}]}\n"
-         "solver: {type: explicit, time_step: 4.0e-8, steps: 400}\n" + adapt;
+DeckBuilder plate(double spacing, double traction) {
+  DeckBuilder d;
+  d.set("model.dimension", 2)
+      .set("model.plane", "stress")
+      .set("material.youngs_modulus", 72.0e9)
+      .set("material.density", 2440.0)
+      .set("material.fracture_energy", 10.0)
+      .set("discretization.spacing", spacing)
+      .set("discretization.body.box.min", {0.0, 0.0})
+      .set("discretization.body.box.max", {0.03, 0.03})
+      .append("discretization.holes",
+              DeckBuilder().set("disk.center", {0.015, 0.015}).set("disk.radius", 0.004))
+      .append("boundary_conditions", DeckBuilder()
+                                         .set("name", "clamp")
+                                         .set("region", test::box({0.0, 0.0}, {0.03, 0.001}))
+                                         .set("displacement", test::Components{"0", "0"}))
+      .append("loads", DeckBuilder()
+                           .set("name", "pull")
+                           .set("type", "traction")
+                           .set("region", test::box({0.0, 0.029}, {0.03, 0.03}))
+                           .set("value", {0.0, traction})
+                           .set("time.function", "ramp")
+                           .set("time.end", 1.0e-5))
+      .append("damage.no_fail", test::box({0.0, 0.0}, {0.03, 0.003}))
+      .append("damage.no_fail", test::box({0.0, 0.027}, {0.03, 0.03}))
+      .set("solver.type", "explicit")
+      .set("solver.time_step", 4.0e-8)
+      .set("solver.steps", 400);
+  return d;
 }
 
 struct Resultant {
@@ -108,11 +125,13 @@ TEST(AgrsInvisible, InitialRefinementOverTheLoadStripKeepsItsResultants) {
   // parent's: the resultant force and moment stay, to round-off (method B; method A shrinks the
   // loaded parents' cells without handing the loss to the new nodes, see docs/agrs.md).
   for (const char* method : {"B"}) {
-    const std::string zone =
-        std::string("adapt: {method: ") + method +
-        ", initial_refinement: [{region: {box: {min: [0.004, 0.02], max: [0.02, 0.03]}}, level: 1}]}\n";
-    const Model coarse = build_model(test::deck_from(plate(1e-3, 2e6)));
-    const Model refined = build_model(test::deck_from(plate(1e-3, 2e6, zone)));
+    const Model coarse = build_model(plate(1e-3, 2e6).build("plate"));
+    const DeckBuilder zone =
+        DeckBuilder().set("region", test::box({0.004, 0.02}, {0.02, 0.03})).set("level", 1);
+    const Model refined = build_model(plate(1e-3, 2e6)
+                                          .set("adapt.method", method)
+                                          .append("adapt.initial_refinement", zone)
+                                          .build("plate with a refined zone"));
     std::size_t loaded_children = 0;
     for (std::uint32_t i : refined.loads[0].nodes)
       loaded_children += (refined.nodes.flags[i] & kActive) && refined.nodes.level[i] > 0;
@@ -149,7 +168,7 @@ TEST(AgrsInvisible, EventsBelowTheFractureLoadBreakNoBondAndKeepTheFineField) {
                                      {250, 0.0195, 0.015, 0.0015},  // hole, right stress peak
                                      {300, 0.026, 0.008, 0.002}};   // quiet corner
   auto run = [&](double spacing, bool adapt, double* smax_ratio) {
-    Model m = build_model(test::deck_from(plate(spacing, traction)));
+    Model m = build_model(plate(spacing, traction).build("plate"));
     VelocityVerlet vv(m, 4e-8);
     vv.initialize();
     const auto r0 = load_resultants(m);
@@ -216,18 +235,26 @@ TEST(AgrsInvisible, TheTimeStepAccountsForTheFinestLevelBeforeTheRun) {
   // `check` and `run` share choose_time_step: a deck step above the finest level's stable step
   // is refused before any work, and the default step is the finest level's (delta halves per
   // level, and the stable step with it).
-  const std::string base = plate(1e-3, 2e6);
-  const Model m = build_model(test::deck_from(base));
-  const TimeStepChoice uniform = choose_time_step(test::deck_from(base), m);
-  std::string free_step = base;
-  free_step.replace(free_step.find("time_step: 4.0e-8, "), 19, "");
+  const Model m = build_model(plate(1e-3, 2e6).build("plate"));
+  const TimeStepChoice uniform = choose_time_step(plate(1e-3, 2e6).build("plate"), m);
   for (int level : {1, 2}) {
-    const std::string adapt = "adapt: {max_level: " + std::to_string(level) + "}\n";
-    const TimeStepChoice ts = choose_time_step(test::deck_from(free_step + adapt), m);
+    // The plate without its time step.
+    DeckBuilder free_step = plate(1e-3, 2e6);
+    free_step.set("solver", DeckBuilder().set("type", "explicit").set("steps", 400))
+        .set("adapt.max_level", level);
+    const TimeStepChoice ts = choose_time_step(free_step.build("plate"), m);
     EXPECT_DOUBLE_EQ(ts.dt, 0.8 * uniform.dt_crit / (1 << level));
-    std::string too_long = base + adapt;
-    too_long.replace(too_long.find("4.0e-8"), 6, std::to_string(0.9 * uniform.dt_crit / (1 << level) * 1.2));
-    EXPECT_THROW(choose_time_step(test::deck_from(too_long), m), DeckError);
+    DeckBuilder too_long = plate(1e-3, 2e6);
+    too_long.set("adapt.max_level", level)
+        .set("solver.time_step", 0.9 * uniform.dt_crit / (1 << level) * 1.2);
+    const Deck refused = too_long.build("plate");  // a valid deck: its step is refused below
+    try {
+      choose_time_step(refused, m);
+      ADD_FAILURE() << "level " << level << ": a step above the finest level's bound was taken";
+    } catch (const DeckError& e) {
+      EXPECT_EQ(e.key(), "solver.time_step");
+      EXPECT_NE(std::string(e.what()).find("stable step"), std::string::npos) << e.what();
+    }
   }
 }
 
@@ -235,7 +262,7 @@ TEST(AgrsInvisible, TheStretchTheForcePassTracksFlagsTheNodesASweepFlags) {
   // Plain PMB: the stretch trigger reads each row's largest breakable stretch from the force pass
   // instead of a sweep of its own. Under a load that flags some nodes and not others, both must
   // flag the same nodes, for several thresholds.
-  const Deck dk = test::deck_from(plate(1e-3, 4e6));
+  const Deck dk = plate(1e-3, 4e6).build("plate");
   Model m = build_model(dk);
   AdaptSpec spec;
   spec.enabled = true;
@@ -267,24 +294,40 @@ TEST(AgrsInvisible, AMirrorSymmetricPlateStaysSymmetricWithEveryPairingAndLaw) {
   // no longer in node order then; one node damaged alone broke the symmetry.)
   for (const char* law : {"pmb", "lps"})
     for (const char* pairing : {"source_horizon", "dual_horizon"}) {
-      const std::string yaml =
-          std::string("model: {dimension: 2, plane: stress, formulation: ") + law + "}\n" +
-          "material: {youngs_modulus: 72.0e9, density: 2440.0, fracture_energy: 10.0" +
-          (std::string(law) == "lps" ? ", poisson_ratio: 0.25}\n" : "}\n") +
-          "discretization: {spacing: 1.0e-3, body: {box: {min: [0, 0], max: [0.03, 0.03]}}, "
-          "holes: [{disk: {center: [0.015, 0.015], radius: 0.004}}]}\n"
-          "loads: [{type: traction, region: {box: {min: [0, 0.029], max: [0.03, 0.03]}}, "
-          "value: [0, 6.0e6], time: {function: ramp, end: 5.0e-6}}, "
-          "{type: traction, region: {box: {min: [0, 0], max: [0.03, 0.001]}}, "
-          "value: [0, -6.0e6], time: {function: ramp, end: 5.0e-6}}]\n"
-          "damage: {no_fail: [{box: {min: [0, 0], max: [0.03, 0.002]}}, "
-          "{box: {min: [0, 0.028], max: [0.03, 0.03]}}]}\n"
-          "solver: {end_time: 1.6e-5, bond_pairing: " + pairing + "}\n"
-          "adapt: {max_level: 1}\n";
+      DeckBuilder d;
+      d.set("model.dimension", 2)
+          .set("model.plane", "stress")
+          .set("model.formulation", law)
+          .set("material.youngs_modulus", 72.0e9)
+          .set("material.density", 2440.0)
+          .set("material.fracture_energy", 10.0);
+      if (std::string(law) == "lps") d.set("material.poisson_ratio", 0.25);
+      d.set("discretization.spacing", 1.0e-3)
+          .set("discretization.body.box.min", {0.0, 0.0})
+          .set("discretization.body.box.max", {0.03, 0.03})
+          .append("discretization.holes",
+                  DeckBuilder().set("disk.center", {0.015, 0.015}).set("disk.radius", 0.004))
+          .append("loads", DeckBuilder()
+                               .set("type", "traction")
+                               .set("region", test::box({0.0, 0.029}, {0.03, 0.03}))
+                               .set("value", {0.0, 6.0e6})
+                               .set("time.function", "ramp")
+                               .set("time.end", 5.0e-6))
+          .append("loads", DeckBuilder()
+                               .set("type", "traction")
+                               .set("region", test::box({0.0, 0.0}, {0.03, 0.001}))
+                               .set("value", {0.0, -6.0e6})
+                               .set("time.function", "ramp")
+                               .set("time.end", 5.0e-6))
+          .append("damage.no_fail", test::box({0.0, 0.0}, {0.03, 0.002}))
+          .append("damage.no_fail", test::box({0.0, 0.028}, {0.03, 0.03}))
+          .set("solver.end_time", 1.6e-5)
+          .set("solver.bond_pairing", pairing)
+          .set("adapt.max_level", 1);
       RunOptions ro;
       ro.write_files = false;
       ro.quiet = true;
-      const RunResult r = run_simulation(test::deck_from(yaml), ro);
+      const RunResult r = run_simulation(d.build("plate with a hole"), ro);
       ASSERT_FALSE(r.diverged);
       const NodeSet& ns = r.model.nodes;
       std::map<std::pair<long, long>, double> damage;

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <vector>
 
+#include "input/deck_builder.hpp"
 #include "setup/build_model.hpp"
 #include "solver/internal_forces.hpp"
 #include "test_helpers.hpp"
@@ -20,12 +21,20 @@ using namespace periadapt;
 namespace {
 
 Model bar() {
-  return build_model(test::deck_from(
-      "model: {dimension: 1, thickness: 1.0e-4, formulation: bilinear_softening}\n"
-      "material: {youngs_modulus: 1.0e9, density: 1000, fracture_energy: 100.0, "
-      "peak_stress: 1.0e6}\n"
-      "discretization: {spacing: 0.0005, horizon_factor: 4, body: {box: {min: [0], max: [0.04]}}}\n"
-      "solver: {steps: 1}\n"));
+  return build_model(DeckBuilder()
+                         .set("model.dimension", 1)
+                         .set("model.thickness", 1.0e-4)
+                         .set("model.formulation", "bilinear_softening")
+                         .set("material.youngs_modulus", 1.0e9)
+                         .set("material.density", 1000.0)
+                         .set("material.fracture_energy", 100.0)
+                         .set("material.peak_stress", 1.0e6)
+                         .set("discretization.spacing", 0.0005)
+                         .set("discretization.horizon_factor", 4.0)
+                         .set("discretization.body.box.min", {0.0})
+                         .set("discretization.body.box.max", {0.04})
+                         .set("solver.steps", 1)
+                         .build("softening bar"));
 }
 
 double tension(Model& m, double s) { return test::bar_tension(m, s, 0.04); }

@@ -1,11 +1,10 @@
 // Explicit dynamics: momentum conservation, energy conservation, wave arrival, stability.
 #include <gtest/gtest.h>
 
-#include <fmt/core.h>
-
 #include <cmath>
 
 #include "analysis/energy.hpp"
+#include "input/deck_builder.hpp"
 #include "run/simulation.hpp"
 #include "setup/build_model.hpp"
 #include "input/deck_error.hpp"
@@ -24,8 +23,7 @@ struct FreeBodyRun {
 };
 
 // A body with no loads and no constraints stepped as the deck says.
-FreeBodyRun run_free_body(const std::string& yaml, bool undo) {
-  const Deck dk = test::deck_from(yaml);
+FreeBodyRun run_free_body(const Deck& dk, bool undo) {
   Model m = build_model(dk);
   const TimeStepChoice ts = choose_time_step(dk, m);
   VelocityVerlet vv(m, ts.dt);
@@ -51,17 +49,40 @@ FreeBodyRun run_free_body(const std::string& yaml, bool undo) {
   return r;
 }
 
+// A 1D bar of 20 (E = rho = 1, dx = 0.25, m = 3) with a small Gaussian displacement at its middle.
+DeckBuilder short_bar() {
+  DeckBuilder d;
+  d.set("model.dimension", 1)
+      .set("material.youngs_modulus", 1.0)
+      .set("material.density", 1.0)
+      .set("discretization.spacing", 0.25)
+      .set("discretization.horizon_factor", 3.0)
+      .set("discretization.body.box.min", {0.0})
+      .set("discretization.body.box.max", {20.0})
+      .set("initial_conditions.displacement", test::Components{"0.001*exp(-(x-10)^2)"})
+      .set("damage.enabled", false);
+  return d;
+}
+
 }  // namespace
 
 TEST(Dynamics, FreeBodyConservesLinearMomentumWithBreaking) {
   // Random-looking initial velocities large enough to break bonds; no loads, no constraints.
   const FreeBodyRun r = run_free_body(
-      "model: {dimension: 2, plane: stress}\n"
-      "material: {youngs_modulus: 72.0e9, density: 2440, fracture_energy: 135}\n"
-      "discretization: {spacing: 0.001, horizon_factor: 3.015, body: {box: {min: [0, 0], max: [0.03, 0.02]}}}\n"
-      "initial_conditions:\n"
-      "  velocity: ['40*sin(977*x)*cos(311*y) + 3', '25*cos(1201*x+0.3)*sin(713*y)']\n"
-      "solver: {steps: 300}\n",
+      DeckBuilder()
+          .set("model.dimension", 2)
+          .set("model.plane", "stress")
+          .set("material.youngs_modulus", 72.0e9)
+          .set("material.density", 2440.0)
+          .set("material.fracture_energy", 135.0)
+          .set("discretization.spacing", 0.001)
+          .set("discretization.horizon_factor", 3.015)
+          .set("discretization.body.box.min", {0.0, 0.0})
+          .set("discretization.body.box.max", {0.03, 0.02})
+          .set("initial_conditions.velocity",
+               test::Components{"40*sin(977*x)*cos(311*y) + 3", "25*cos(1201*x+0.3)*sin(713*y)"})
+          .set("solver.steps", 300)
+          .build("free plate"),
       false);
   EXPECT_GT(r.broken, 0u) << "the test should exercise bond breaking";
   EXPECT_LT(r.drift, 1e-12);
@@ -70,14 +91,22 @@ TEST(Dynamics, FreeBodyConservesLinearMomentumWithBreaking) {
 TEST(Dynamics, GaussianPulseConservesEnergyInAPlate) {
   // Plane-stress plate 0.1 x 0.04 (thesis 4.2 geometry), E = rho = 1, free edges, a Gaussian
   // pulse in u_x crossing the plate and reflecting; total energy must stay within 0.5%.
-  const std::string yaml =
-      "model: {dimension: 2, plane: stress}\n"
-      "material: {youngs_modulus: 1.0, density: 1.0}\n"
-      "discretization: {spacing: 0.001, horizon_factor: 3.015, body: {box: {min: [0, 0], max: [0.1, 0.04]}}}\n"
-      "initial_conditions: {displacement: ['1e-5*exp(-((x-0.05)/0.01)^2)', '0']}\n"
-      "damage: {enabled: false}\n"
-      "solver: {end_time: 0.1, safety_factor: 0.5}\n";
-  const test::EnergyRun r = test::run_energy_history(yaml);
+  const Deck dk = DeckBuilder()
+                      .set("model.dimension", 2)
+                      .set("model.plane", "stress")
+                      .set("material.youngs_modulus", 1.0)
+                      .set("material.density", 1.0)
+                      .set("discretization.spacing", 0.001)
+                      .set("discretization.horizon_factor", 3.015)
+                      .set("discretization.body.box.min", {0.0, 0.0})
+                      .set("discretization.body.box.max", {0.1, 0.04})
+                      .set("initial_conditions.displacement",
+                           test::Components{"1e-5*exp(-((x-0.05)/0.01)^2)", "0"})
+                      .set("damage.enabled", false)
+                      .set("solver.end_time", 0.1)
+                      .set("solver.safety_factor", 0.5)
+                      .build("pulse in a plate");
+  const test::EnergyRun r = test::run_energy_history(dk);
   ASSERT_TRUE(r.ok);
   ASSERT_GT(r.e0, 0);
   EXPECT_GT(r.max_kinetic, 0.3 * r.e0) << "the pulse must actually move";
@@ -89,15 +118,21 @@ TEST(Dynamics, EnergyErrorIsSecondOrderInTheTimeStepIn3D) {
   // faces and a short Gaussian pulse in u_x (three horizons wide, rich in fast modes). Velocity-
   // Verlet's energy error is bounded and second order: halving dt divides the worst drift by 4.
   auto drift = [](double safety) {
-    const test::EnergyRun r = test::run_energy_history(fmt::format(
-        "model: {{dimension: 3}}\n"
-        "material: {{youngs_modulus: 1.0, density: 1.0}}\n"
-        "discretization: {{spacing: 0.001, horizon_factor: 3.015, body: {{box: {{min: [0, 0, 0], "
-        "max: [0.024, 0.01, 0.008]}}}}}}\n"
-        "initial_conditions: {{displacement: ['1e-5*exp(-((x-0.012)/0.003)^2)', '0', '0']}}\n"
-        "damage: {{enabled: false}}\n"
-        "solver: {{end_time: 0.03, safety_factor: {}}}\n",
-        safety));
+    const test::EnergyRun r = test::run_energy_history(
+        DeckBuilder()
+            .set("model.dimension", 3)
+            .set("material.youngs_modulus", 1.0)
+            .set("material.density", 1.0)
+            .set("discretization.spacing", 0.001)
+            .set("discretization.horizon_factor", 3.015)
+            .set("discretization.body.box.min", {0.0, 0.0, 0.0})
+            .set("discretization.body.box.max", {0.024, 0.01, 0.008})
+            .set("initial_conditions.displacement",
+                 test::Components{"1e-5*exp(-((x-0.012)/0.003)^2)", "0", "0"})
+            .set("damage.enabled", false)
+            .set("solver.end_time", 0.03)
+            .set("solver.safety_factor", safety)
+            .build("pulse in a block"));
     EXPECT_TRUE(r.ok);
     EXPECT_GT(r.max_kinetic, 0.3 * r.e0) << "the pulse must actually move";
     return r.worst_drift;
@@ -112,12 +147,20 @@ TEST(Dynamics, FreeBlockConservesLinearMomentumWithBreakingIn3D) {
   // so the momentum stays put to round-off; the undo copy the step loop keeps on the way gives
   // back the state before a step exactly.
   const FreeBodyRun r = run_free_body(
-      "model: {dimension: 3}\n"
-      "material: {youngs_modulus: 72.0e9, density: 2440, fracture_energy: 135}\n"
-      "discretization: {spacing: 0.001, horizon_factor: 3.015, body: {box: {min: [0, 0, 0], max: [0.012, 0.008, 0.006]}}}\n"
-      "initial_conditions:\n"
-      "  velocity: ['40*sin(977*x)*cos(311*y) + 3', '25*cos(1201*x+0.3)*sin(713*z)', '30*sin(1500*z+0.2) - 2']\n"
-      "solver: {steps: 200}\n",
+      DeckBuilder()
+          .set("model.dimension", 3)
+          .set("material.youngs_modulus", 72.0e9)
+          .set("material.density", 2440.0)
+          .set("material.fracture_energy", 135.0)
+          .set("discretization.spacing", 0.001)
+          .set("discretization.horizon_factor", 3.015)
+          .set("discretization.body.box.min", {0.0, 0.0, 0.0})
+          .set("discretization.body.box.max", {0.012, 0.008, 0.006})
+          .set("initial_conditions.velocity",
+               test::Components{"40*sin(977*x)*cos(311*y) + 3", "25*cos(1201*x+0.3)*sin(713*z)",
+                                "30*sin(1500*z+0.2) - 2"})
+          .set("solver.steps", 200)
+          .build("free block"),
       true);
   EXPECT_GT(r.broken, 0u) << "the test should exercise bond breaking";
   EXPECT_LT(r.drift, 1e-12);
@@ -127,14 +170,19 @@ TEST(Dynamics, FreeBlockConservesLinearMomentumWithBreakingIn3D) {
 TEST(Dynamics, OneDimensionalPulseArrivesAtTheClassicalTime) {
   // Bobaru et al. 2009, 6.2: u0 = 0.02 exp(-0.01 x^2) splits into two pulses of amplitude 0.01
   // travelling at c = sqrt(E/rho) = 1. After t = 100 the right peak must be at x = 100 (2%).
-  const std::string yaml =
-      "model: {dimension: 1}\n"
-      "material: {youngs_modulus: 1.0, density: 1.0}\n"
-      "discretization: {spacing: 0.25, horizon_factor: 4, body: {box: {min: [-160], max: [160]}}}\n"
-      "initial_conditions: {displacement: ['0.02*exp(-0.01*x^2)']}\n"
-      "damage: {enabled: false}\n"
-      "solver: {end_time: 100}\n";
-  const Deck dk = test::deck_from(yaml);
+  const Deck dk = DeckBuilder()
+                      .set("model.dimension", 1)
+                      .set("material.youngs_modulus", 1.0)
+                      .set("material.density", 1.0)
+                      .set("discretization.spacing", 0.25)
+                      .set("discretization.horizon_factor", 4.0)
+                      .set("discretization.body.box.min", {-160.0})
+                      .set("discretization.body.box.max", {160.0})
+                      .set("initial_conditions.displacement",
+                           test::Components{"0.02*exp(-0.01*x^2)"})
+                      .set("damage.enabled", false)
+                      .set("solver.end_time", 100.0)
+                      .build("bar");
   Model m = build_model(dk);
   TimeStepChoice ts = choose_time_step(dk, m);
   ts.dt = 100.0 / ts.steps;  // land exactly on t = 100
@@ -152,17 +200,13 @@ TEST(Dynamics, OneDimensionalPulseArrivesAtTheClassicalTime) {
 }
 
 TEST(Dynamics, TimeStepAboveTheStableBoundIsRejected) {
-  const std::string base =
-      "model: {dimension: 1}\n"
-      "material: {youngs_modulus: 1.0, density: 1.0}\n"
-      "discretization: {spacing: 0.25, horizon_factor: 3, body: {box: {min: [0], max: [20]}}}\n"
-      "initial_conditions: {displacement: ['0.001*exp(-(x-10)^2)']}\n"
-      "damage: {enabled: false}\n";
-  const Deck probe = test::deck_from(base + "solver: {steps: 10}\n");
+  const Deck probe = short_bar().set("solver.steps", 10).build("bar");
   const Model m = build_model(probe);
   const double crit = choose_time_step(probe, m).dt_crit;
-  const Deck bad = test::deck_from(base + "solver: {steps: 10, time_step: " +
-                                   std::to_string(1.5 * crit) + "}\n");
+  const Deck bad = short_bar()
+                       .set("solver.steps", 10)
+                       .set("solver.time_step", 1.5 * crit)
+                       .build("bar");
   try {
     choose_time_step(bad, m);
     FAIL() << "expected a DeckError";
@@ -175,17 +219,15 @@ TEST(Dynamics, TimeStepAboveTheStableBoundIsRejected) {
 TEST(Dynamics, DivergingRunStopsWithADiagnosis) {
   // Three times the stable step, explicitly allowed: the run must stop with the node and step,
   // never return NaN fields.
-  const std::string yaml =
-      "model: {dimension: 1}\n"
-      "material: {youngs_modulus: 1.0, density: 1.0}\n"
-      "discretization: {spacing: 0.25, horizon_factor: 3, body: {box: {min: [0], max: [20]}}}\n"
-      "initial_conditions: {displacement: ['0.001*exp(-(x-10)^2)']}\n"
-      "damage: {enabled: false}\n"
-      "solver: {steps: 5000, time_step: 1.2, allow_unstable_time_step: true}\n";
+  const Deck dk = short_bar()
+                      .set("solver.steps", 5000)
+                      .set("solver.time_step", 1.2)
+                      .set("solver.allow_unstable_time_step", true)
+                      .build("bar");
   RunOptions ro;
   ro.write_files = false;
   ro.quiet = true;
-  RunResult r = run_simulation(test::deck_from(yaml), ro);
+  RunResult r = run_simulation(dk, ro);
   ASSERT_TRUE(r.diverged);
   EXPECT_EQ(r.summary["status"], "diverged");
   EXPECT_GT(r.summary["divergence"]["step"].get<long>(), 0);
@@ -246,21 +288,33 @@ TEST(Dynamics, AdaptiveStepCheckCountsAnInitialRefinementOnce) {
   // refined grid and must be accepted; 60 ns must be refused with the key. (The check used to
   // apply the 1/4 of level 2 to a bound that already came from the level-2 nodes.)
   auto deck = [](double dt) {
-    return "model: {dimension: 2, plane: stress}\n"
-           "material: {youngs_modulus: 72.0e9, density: 2440, fracture_energy: 135}\n"
-           "discretization: {spacing: 0.001, horizon_factor: 3, body: {box: {min: [0, 0], max: "
-           "[0.02, 0.02]}}}\n"
-           "damage: {enabled: false}\n"
-           "adapt: {max_level: 2, energy_trigger: 0.7, initial_refinement: [{region: {box: {min: "
-           "[0.008, 0.008], max: [0.012, 0.012]}}, level: 2}]}\n"
-           "solver: {steps: 2, time_step: " + fmt::format("{:.3e}", dt) + "}\n";
+    return DeckBuilder()
+        .set("model.dimension", 2)
+        .set("model.plane", "stress")
+        .set("material.youngs_modulus", 72.0e9)
+        .set("material.density", 2440.0)
+        .set("material.fracture_energy", 135.0)
+        .set("discretization.spacing", 0.001)
+        .set("discretization.horizon_factor", 3.0)
+        .set("discretization.body.box.min", {0.0, 0.0})
+        .set("discretization.body.box.max", {0.02, 0.02})
+        .set("damage.enabled", false)
+        .set("adapt.max_level", 2)
+        .set("adapt.energy_trigger", 0.7)
+        .append("adapt.initial_refinement",
+                DeckBuilder()
+                    .set("region", test::box({0.008, 0.008}, {0.012, 0.012}))
+                    .set("level", 2))
+        .set("solver.steps", 2)
+        .set("solver.time_step", dt)
+        .build("plate refined at its centre");
   };
   RunOptions ro;
   ro.write_files = false;
   ro.quiet = true;
-  EXPECT_NO_THROW(run_simulation(test::deck_from(deck(40e-9)), ro));
+  EXPECT_NO_THROW(run_simulation(deck(40e-9), ro));
   try {
-    run_simulation(test::deck_from(deck(60e-9)), ro);
+    run_simulation(deck(60e-9), ro);
     FAIL() << "60 ns accepted";
   } catch (const DeckError& e) {
     EXPECT_EQ(e.key(), "solver.time_step");
@@ -278,15 +332,27 @@ TEST(Dynamics, ExternalWorkOfADrivenBodyMatchesItsAnalyticWork) {
   //    b V v over the full-step velocities differs from that by dt^2/4 b V (a_n+1 - a_n) per step,
   //    large here where the stepped load rings at the grid's highest frequencies: we measure
   //    0.13%, and ask 1% (a missing 1/2 of the trapezoid would be 100%). K + U = W within 0.5%.
-  const std::string common =
-      "model: {dimension: 2, plane: stress}\n"
-      "material: {youngs_modulus: 72.0e9, density: 2440.0}\n"
-      "discretization: {spacing: 1.0e-3, body: {box: {min: [0, 0], max: [0.04, 0.01]}}}\n"
-      "damage: {enabled: false}\n"
-      "solver: {time_step: 5.0e-8, steps: 400}\n";
+  auto common = [] {
+    DeckBuilder d;
+    d.set("model.dimension", 2)
+        .set("model.plane", "stress")
+        .set("material.youngs_modulus", 72.0e9)
+        .set("material.density", 2440.0)
+        .set("discretization.spacing", 1.0e-3)
+        .set("discretization.body.box.min", {0.0, 0.0})
+        .set("discretization.body.box.max", {0.04, 0.01})
+        .set("damage.enabled", false)
+        .set("solver.time_step", 5.0e-8)
+        .set("solver.steps", 400);
+    return d;
+  };
   {
-    const Deck dk = test::deck_from(
-        common + "loads: [{type: body_force, region: {all: true}, value: [3.0e7, -1.0e7]}]\n");
+    const Deck dk = common()
+                        .append("loads", DeckBuilder()
+                                             .set("type", "body_force")
+                                             .set("region.all", true)
+                                             .set("value", {3.0e7, -1.0e7}))
+                        .build("free plate");
     Model m = build_model(dk);
     VelocityVerlet vv(m, 5e-8);
     vv.initialize();
@@ -304,10 +370,16 @@ TEST(Dynamics, ExternalWorkOfADrivenBodyMatchesItsAnalyticWork) {
     EXPECT_LT(strain_energy(m, Wd), 1e-9 * W);
   }
   {
-    const Deck dk = test::deck_from(
-        common +
-        "boundary_conditions: [{region: {box: {min: [0, 0], max: [0.001, 0.01]}}, displacement: [0, 0]}]\n"
-        "loads: [{type: traction, region: {box: {min: [0.039, 0], max: [0.04, 0.01]}}, value: [2.0e7, 0]}]\n");
+    const Deck dk = common()
+                        .append("boundary_conditions",
+                                DeckBuilder()
+                                    .set("region", test::box({0.0, 0.0}, {0.001, 0.01}))
+                                    .set("displacement", test::Components{"0", "0"}))
+                        .append("loads", DeckBuilder()
+                                             .set("type", "traction")
+                                             .set("region", test::box({0.039, 0.0}, {0.04, 0.01}))
+                                             .set("value", {2.0e7, 0.0}))
+                        .build("clamped plate");
     Model m = build_model(dk);
     VelocityVerlet vv(m, 5e-8);
     vv.initialize();
@@ -335,20 +407,34 @@ TEST(Dynamics, TheDeckMemoryEstimateBoundsTheBuiltModelClosely) {
   // The estimate refuses decks before any allocation, so it must not refuse workable ones: it
   // may be above the built model (holes, edges and pre-cracks are not subtracted) but within 2x,
   // and never below it. 2D with a hole and an initial zone, 3D, and the exact-area rule.
-  const std::vector<std::string> decks = {
-      "model: {dimension: 2}\nmaterial: {youngs_modulus: 1.0, density: 1.0}\n"
-      "discretization: {spacing: 1.0e-3, body: {box: {min: [0, 0], max: [0.1, 0.04]}}, "
-      "holes: [{disk: {center: [0.05, 0.02], radius: 0.01}}]}\n"
-      "damage: {enabled: false}\nsolver: {end_time: 1.0e-6}\n"
-      "adapt: {initial_refinement: [{region: {box: {min: [0.0, 0.0], max: [0.03, 0.04]}}, level: 1}]}\n",
-      "model: {dimension: 3}\nmaterial: {youngs_modulus: 1.0, density: 1.0}\n"
-      "discretization: {spacing: 1.0e-3, body: {box: {min: [0, 0, 0], max: [0.03, 0.02, 0.01]}}}\n"
-      "damage: {enabled: false}\nsolver: {end_time: 1.0e-6}\n",
-      "model: {dimension: 2}\nmaterial: {youngs_modulus: 1.0, density: 1.0}\n"
-      "discretization: {spacing: 1.0e-3, quadrature: ipa_hybrid, body: {box: {min: [0, 0], max: [0.05, 0.05]}}}\n"
-      "damage: {enabled: false}\nsolver: {end_time: 1.0e-6}\n"};
-  for (const std::string& yaml : decks) {
-    const Deck dk = test::deck_from(yaml);
+  auto body = [](int dim) {
+    DeckBuilder d;
+    d.set("model.dimension", dim)
+        .set("material.youngs_modulus", 1.0)
+        .set("material.density", 1.0)
+        .set("discretization.spacing", 1.0e-3)
+        .set("damage.enabled", false)
+        .set("solver.end_time", 1.0e-6);
+    return d;
+  };
+  const std::vector<DeckBuilder> decks = {
+      body(2)
+          .set("discretization.body.box.min", {0.0, 0.0})
+          .set("discretization.body.box.max", {0.1, 0.04})
+          .append("discretization.holes",
+                  DeckBuilder().set("disk.center", {0.05, 0.02}).set("disk.radius", 0.01))
+          .append("adapt.initial_refinement",
+                  DeckBuilder().set("region", test::box({0.0, 0.0}, {0.03, 0.04})).set("level", 1)),
+      body(3)
+          .set("discretization.body.box.min", {0.0, 0.0, 0.0})
+          .set("discretization.body.box.max", {0.03, 0.02, 0.01}),
+      body(2)
+          .set("discretization.quadrature", "ipa_hybrid")
+          .set("discretization.body.box.min", {0.0, 0.0})
+          .set("discretization.body.box.max", {0.05, 0.05})};
+  for (const DeckBuilder& deck : decks) {
+    const std::string yaml = deck.yaml();
+    const Deck dk = deck.build("memory estimate");
     const MemoryEstimate e = estimate_memory(dk);
     const Model m = build_model(dk);
     std::size_t active = 0;
@@ -369,18 +455,32 @@ TEST(Dynamics, TheDeckMemoryEstimateBoundsTheBuiltModelClosely) {
 // surface correction's residual); the grips' work equals the plate's energy K + U.
 TEST(Dynamics, GripReactionsBalanceAndMatchTheAxialStiffness) {
   const double E = 72e9, L0 = 0.3, H = 0.02, t = 0.005, grip = 0.003, du = 3e-5;
-  const std::string yaml =
-      "model: {dimension: 2, thickness: 0.005}\n"
-      "material: {youngs_modulus: 72.0e9, density: 2440}\n"
-      "discretization: {spacing: 1.0e-3, horizon_factor: 3, surface_correction: moments,"
-      " body: {box: {min: [0, 0], max: [0.3, 0.02]}}}\n"
-      "damage: {enabled: false}\n"
-      "boundary_conditions:\n"
-      "  - {name: left, region: {box: {min: [0, 0], max: [0.003, 0.02]}}, displacement: [0, null]}\n"
-      "  - {name: right, region: {box: {min: [0.297, 0], max: [0.3, 0.02]}},"
-      " displacement: [\"3e-5*(t < 4.4e-4 ? 0.5*(1-cos(_pi*t/4.4e-4)) : 1)\", null]}\n"
-      "solver: {end_time: 6.8e-4}\n";
-  const Deck dk = test::deck_from(yaml);
+  const Deck dk =
+      DeckBuilder()
+          .set("model.dimension", 2)
+          .set("model.thickness", 0.005)
+          .set("material.youngs_modulus", 72.0e9)
+          .set("material.density", 2440.0)
+          .set("discretization.spacing", 1.0e-3)
+          .set("discretization.horizon_factor", 3.0)
+          .set("discretization.surface_correction", "moments")
+          .set("discretization.body.box.min", {0.0, 0.0})
+          .set("discretization.body.box.max", {0.3, 0.02})
+          .set("damage.enabled", false)
+          .append("boundary_conditions",
+                  DeckBuilder()
+                      .set("name", "left")
+                      .set("region", test::box({0.0, 0.0}, {0.003, 0.02}))
+                      .set("displacement", test::Components{"0", std::nullopt}))
+          .append("boundary_conditions",
+                  DeckBuilder()
+                      .set("name", "right")
+                      .set("region", test::box({0.297, 0.0}, {0.3, 0.02}))
+                      .set("displacement",
+                           test::Components{"3e-5*(t < 4.4e-4 ? 0.5*(1-cos(_pi*t/4.4e-4)) : 1)",
+                                            std::nullopt}))
+          .set("solver.end_time", 6.8e-4)
+          .build("gripped plate");
   Model m = build_model(dk);
   const TimeStepChoice ts = choose_time_step(dk, m);
   VelocityVerlet vv(m, ts.dt);
@@ -415,13 +515,23 @@ TEST(Dynamics, GripReactionsBalanceAndMatchTheAxialStiffness) {
 // any subset it is no smaller, and a subset holding the limiting node gives it again. A plate
 // with a refined band has per-node bounds that differ by level (the band's are about half).
 TEST(Dynamics, StableStepOverListedNodesIsTheSmallestOfTheirBounds) {
-  const Model m = build_model(test::deck_from(
-      "model: {dimension: 2}\n"
-      "material: {youngs_modulus: 72.0e9, density: 2440}\n"
-      "discretization: {spacing: 1.0e-3, horizon_factor: 3, body: {box: {min: [0, 0], max: [0.04, 0.02]}}}\n"
-      "damage: {enabled: false}\n"
-      "adapt: {max_level: 1, initial_refinement: [{region: {box: {min: [0.015, 0], max: [0.025, 0.02]}}, level: 1}]}\n"
-      "solver: {steps: 1}\n"));
+  const Model m = build_model(
+      DeckBuilder()
+          .set("model.dimension", 2)
+          .set("material.youngs_modulus", 72.0e9)
+          .set("material.density", 2440.0)
+          .set("discretization.spacing", 1.0e-3)
+          .set("discretization.horizon_factor", 3.0)
+          .set("discretization.body.box.min", {0.0, 0.0})
+          .set("discretization.body.box.max", {0.04, 0.02})
+          .set("damage.enabled", false)
+          .set("adapt.max_level", 1)
+          .append("adapt.initial_refinement",
+                  DeckBuilder()
+                      .set("region", test::box({0.015, 0.0}, {0.025, 0.02}))
+                      .set("level", 1))
+          .set("solver.steps", 1)
+          .build("plate with a refined band"));
   const StableStep all = stable_time_step(m);
   std::vector<std::uint32_t> active, coarse;
   for (std::uint32_t i = 0; i < m.nodes.size(); ++i) {

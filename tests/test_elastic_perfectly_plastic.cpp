@@ -13,6 +13,7 @@
 
 #include "adapt/refine.hpp"
 #include "adapt/triggers.hpp"
+#include "input/deck_builder.hpp"
 #include "setup/build_model.hpp"
 #include "solver/internal_forces.hpp"
 #include "solver/velocity_verlet.hpp"
@@ -24,14 +25,24 @@ namespace {
 
 constexpr double kE = 2.0e9, kYield = 4.0e6;  // s_Y = 2e-3
 
-Model bar(const std::string& extra = "") {
-  return build_model(test::deck_from(
-      "model: {dimension: 1, thickness: 1.0e-4, formulation: elastic_perfectly_plastic}\n"
-      "material: {youngs_modulus: 2.0e9, density: 1000, fracture_energy: 2000.0, "
-      "yield_stress: 4.0e6}\n"
-      "discretization: {spacing: 0.0005, horizon_factor: 4, body: {box: {min: [0], max: [0.04]}}}\n"
-      "solver: {steps: 1}\n" + extra));
+DeckBuilder bar_deck() {
+  DeckBuilder d;
+  d.set("model.dimension", 1)
+      .set("model.thickness", 1.0e-4)
+      .set("model.formulation", "elastic_perfectly_plastic")
+      .set("material.youngs_modulus", 2.0e9)
+      .set("material.density", 1000.0)
+      .set("material.fracture_energy", 2000.0)
+      .set("material.yield_stress", 4.0e6)
+      .set("discretization.spacing", 0.0005)
+      .set("discretization.horizon_factor", 4.0)
+      .set("discretization.body.box.min", {0.0})
+      .set("discretization.body.box.max", {0.04})
+      .set("solver.steps", 1);
+  return d;
 }
+
+Model bar() { return build_model(bar_deck().build("plastic bar")); }
 
 double tension(Model& m, double s) { return test::bar_tension(m, s, 0.04); }
 
@@ -106,13 +117,20 @@ TEST(ElasticPerfectlyPlastic, StoredEnergyAfterYieldIsTheElasticPart) {
 class Refinement : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(Refinement, KeepsTheHistoriesOfSurvivingBonds) {
-  Model m = build_model(test::deck_from(
-      "model: {dimension: 2, formulation: elastic_perfectly_plastic}\n"
-      "material: {youngs_modulus: 1.0e9, density: 1000, fracture_energy: 50.0, "
-      "yield_stress: 1.0e6}\n"
-      "discretization: {spacing: 0.001, horizon_factor: 3, surface_correction: " +
-      std::string(GetParam()) +
-      ", body: {box: {min: [0, 0], max: [0.02, 0.02]}}}\nsolver: {steps: 1}\n"));
+  Model m = build_model(DeckBuilder()
+                            .set("model.dimension", 2)
+                            .set("model.formulation", "elastic_perfectly_plastic")
+                            .set("material.youngs_modulus", 1.0e9)
+                            .set("material.density", 1000.0)
+                            .set("material.fracture_energy", 50.0)
+                            .set("material.yield_stress", 1.0e6)
+                            .set("discretization.spacing", 0.001)
+                            .set("discretization.horizon_factor", 3.0)
+                            .set("discretization.surface_correction", GetParam())
+                            .set("discretization.body.box.min", {0.0, 0.0})
+                            .set("discretization.body.box.max", {0.02, 0.02})
+                            .set("solver.steps", 1)
+                            .build("sheared plate"));
   NodeSet& ns = m.nodes;
   // A shear past yield everywhere: u = 3e-3 y.
   for (std::size_t i = 0; i < ns.size(); ++i) {
@@ -157,7 +175,10 @@ INSTANTIATE_TEST_SUITE_P(ElasticPerfectlyPlastic, Refinement, ::testing::Values(
 
 TEST(ElasticPerfectlyPlastic, AnUndoneStepRestoresTheHistories) {
   // Stretched past yield at the start, and stretching on: every step moves plastic stretches.
-  Model m = bar("initial_conditions: {displacement: [\"2.5e-3 * x\"], velocity: [\"20 * (x - 0.02)\"]}\n");
+  Model m = build_model(bar_deck()
+                            .set("initial_conditions.displacement", test::Components{"2.5e-3 * x"})
+                            .set("initial_conditions.velocity", test::Components{"20 * (x - 0.02)"})
+                            .build("stretching bar"));
   VelocityVerlet vv(m, 1e-8);
   vv.set_undo(true);
   vv.initialize();
@@ -179,14 +200,21 @@ TEST(ElasticPerfectlyPlastic, HydrostaticStressPlateausAtTheYieldStress) {
   // within 2% (tests/test_law_conformance.cpp).
   for (int dim : {2, 3}) {
     const int cells = dim == 3 ? 11 : 15;
-    const std::string side = std::to_string(cells * 1e-3);
-    std::string lo = "[0", hi = "[" + side;
-    for (int d = 1; d < dim; ++d) lo += ", 0", hi += ", " + side;
-    Model m = build_model(test::deck_from(
-        "model: {dimension: " + std::to_string(dim) + ", formulation: elastic_perfectly_plastic}\n"
-        "material: {youngs_modulus: 1.0e9, density: 1000, yield_stress: 1.0e6}\n"
-        "discretization: {spacing: 0.001, horizon_factor: 3, quadrature: subcell, body: {box: "
-        "{min: " + lo + "], max: " + hi + "]}}}\ndamage: {enabled: false}\nsolver: {steps: 1}\n"));
+    const double side = cells * 1e-3;
+    Model m = build_model(DeckBuilder()
+                              .set("model.dimension", dim)
+                              .set("model.formulation", "elastic_perfectly_plastic")
+                              .set("material.youngs_modulus", 1.0e9)
+                              .set("material.density", 1000.0)
+                              .set("material.yield_stress", 1.0e6)
+                              .set("discretization.spacing", 0.001)
+                              .set("discretization.horizon_factor", 3.0)
+                              .set("discretization.quadrature", "subcell")
+                              .set("discretization.body.box.min", std::vector<double>(dim, 0.0))
+                              .set("discretization.body.box.max", std::vector<double>(dim, side))
+                              .set("damage.enabled", false)
+                              .set("solver.steps", 1)
+                              .build("expanded block"));
     NodeSet& ns = m.nodes;
     const double sy = m.material.onset_stretch;
     std::size_t mid = 0;

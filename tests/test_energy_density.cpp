@@ -5,10 +5,10 @@
 #include <cmath>
 
 #include "analysis/energy.hpp"
+#include "input/deck_builder.hpp"
 #include "material/pmb.hpp"
 #include "setup/build_model.hpp"
 #include "solver/internal_forces.hpp"
-#include "test_helpers.hpp"
 
 using namespace periadapt;
 
@@ -26,26 +26,20 @@ double energy_ratio(const Case& c, bool isotropic, Quadrature q,
                     InfluenceShape shape = InfluenceShape::Constant) {
   const double dx = 1e-3, E = 1e9, eps = 1e-4;
   const int cells = 2 * static_cast<int>(std::ceil(c.m)) + 9;
-  // append() rather than operator+ on literals: gcc 12 warns falsely (-Wrestrict) on the latter.
-  const std::string side = std::to_string(cells * dx);
-  std::string box_min = "[0", box_max = "[";
-  box_max.append(side);
-  for (int d = 1; d < c.dim; ++d) {
-    box_min.append(", 0");
-    box_max.append(", ").append(side);
-  }
-  std::string yaml = "model: {dimension: " + std::to_string(c.dim) +
-                     (c.dim == 2 ? std::string(", plane: ") +
-                                       (c.plane == PlaneCondition::Stress ? "stress" : "strain")
-                                 : std::string()) +
-                     "}\nmaterial: {youngs_modulus: 1.0e9, density: 1000, micromodulus: " +
-                     to_string(shape) +
-                     "}\ndiscretization: {spacing: 0.001, horizon_factor: " + std::to_string(c.m) +
-                     ", quadrature: " +
-                     (q == Quadrature::Subcell ? "subcell" : "pa_pdlammps") + ", body: {box: {min: " +
-                     box_min + "], max: " + box_max + "]}}}\n" +
-                     "damage: {enabled: false}\nsolver: {steps: 1}\n";
-  Model m = build_model(test::deck_from(yaml));
+  DeckBuilder d;
+  d.set("model.dimension", c.dim);
+  if (c.dim == 2) d.set("model.plane", c.plane == PlaneCondition::Stress ? "stress" : "strain");
+  d.set("material.youngs_modulus", 1.0e9)
+      .set("material.density", 1000.0)
+      .set("material.micromodulus", to_string(shape))
+      .set("discretization.spacing", 0.001)
+      .set("discretization.horizon_factor", c.m)
+      .set("discretization.quadrature", q == Quadrature::Subcell ? "subcell" : "pa_pdlammps")
+      .set("discretization.body.box.min", std::vector<double>(c.dim, 0.0))
+      .set("discretization.body.box.max", std::vector<double>(c.dim, cells * dx))
+      .set("damage.enabled", false)
+      .set("solver.steps", 1);
+  Model m = build_model(d.build("block"));
   NodeSet& ns = m.nodes;
   const double centre = 0.5 * cells * dx;
   std::size_t mid = 0;
@@ -130,14 +124,19 @@ TEST(EnergyDensity, ForcePassWithEnergiesGivesTheSameForcesBitForBit) {
   // of the plain pass, so results do not depend on the output cadence; its densities those of
   // the separate energy pass, to round-off. Strains up to 3 s0 break bonds on the way.
   for (const char* shape : {"constant", "triangular"}) {
-    const std::string yaml = std::string(
-        "model: {dimension: 2, plane: stress}\n"
-        "material: {youngs_modulus: 72.0e9, density: 2440, fracture_energy: 135, micromodulus: ") +
-        shape + "}\n"
-        "discretization: {spacing: 0.001, horizon_factor: 3, body: {box: {min: [0, 0], max: "
-        "[0.03, 0.02]}}}\n"
-        "solver: {steps: 1}\n";
-    Model a = build_model(test::deck_from(yaml));
+    Model a = build_model(DeckBuilder()
+                              .set("model.dimension", 2)
+                              .set("model.plane", "stress")
+                              .set("material.youngs_modulus", 72.0e9)
+                              .set("material.density", 2440.0)
+                              .set("material.fracture_energy", 135.0)
+                              .set("material.micromodulus", shape)
+                              .set("discretization.spacing", 0.001)
+                              .set("discretization.horizon_factor", 3.0)
+                              .set("discretization.body.box.min", {0.0, 0.0})
+                              .set("discretization.body.box.max", {0.03, 0.02})
+                              .set("solver.steps", 1)
+                              .build("strained plate"));
     NodeSet& ns = a.nodes;
     const double s0 = a.material.s0;
     for (std::size_t i = 0; i < ns.size(); ++i) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "core/geometry.hpp"
+#include "input/deck_builder.hpp"
 #include "setup/build_model.hpp"
 #include "test_helpers.hpp"
 
@@ -47,47 +48,61 @@ TEST(Geometry, DistanceToShapeIsZeroInsideAndEuclideanOutside) {
 // volume. An outline along cell edges gives the area exactly; any other misses only cells cut by
 // the outline, at most dx^2 each, and at most sqrt(2) P / dx + 4 cells lie on a perimeter P.
 TEST(Geometry, PolygonBodyVolumesSumToItsArea) {
-  auto volume = [](const std::string& polygon) {
-    const Model m = build_model(test::deck_from(
-        "model: {dimension: 2, thickness: 0.01}\n"
-        "material: {youngs_modulus: 72.0e9, density: 2440}\n"
-        "discretization: {spacing: 1.0e-3, horizon_factor: 3, body: {polygon: " + polygon + "}}\n"
-        "damage: {enabled: false}\nsolver: {steps: 1}\n"));
+  auto volume = [](const std::vector<std::vector<double>>& polygon) {
+    const Model m = build_model(DeckBuilder()
+                                    .set("model.dimension", 2)
+                                    .set("model.thickness", 0.01)
+                                    .set("material.youngs_modulus", 72.0e9)
+                                    .set("material.density", 2440.0)
+                                    .set("discretization.spacing", 1.0e-3)
+                                    .set("discretization.horizon_factor", 3.0)
+                                    .set("discretization.body.polygon", polygon)
+                                    .set("damage.enabled", false)
+                                    .set("solver.steps", 1)
+                                    .build("polygon body"));
     double v = 0;
     for (double x : m.nodes.volume) v += x;
     return v / 0.01;
   };
   // L-shape on cell edges: 0.04 x 0.04 less its 0.02 x 0.02 corner.
-  EXPECT_NEAR(volume("[[0, 0], [0.04, 0], [0.04, 0.02], [0.02, 0.02], [0.02, 0.04], [0, 0.04]]"),
+  EXPECT_NEAR(volume({{0, 0}, {0.04, 0}, {0.04, 0.02}, {0.02, 0.02}, {0.02, 0.04}, {0, 0.04}}),
               0.04 * 0.04 * 0.75, 1e-15);
   // A triangle across the lattice (and listed clockwise).
   const double area = 0.5 * 0.0503 * 0.0371, perimeter = 0.0503 + 0.0371 + std::hypot(0.0503, 0.0371);
   const double dx = 1e-3;
-  EXPECT_NEAR(volume("[[0.0002, 0.0004], [0.0002, 0.0375], [0.0505, 0.0004]]"), area,
+  EXPECT_NEAR(volume({{0.0002, 0.0004}, {0.0002, 0.0375}, {0.0505, 0.0004}}), area,
               std::sqrt(2.0) * perimeter * dx + 4 * dx * dx);
 }
 
 // Holes take any region: an L-shaped polygon on cell edges removes exactly its cells (2D), a box
 // and a sphere in 3D remove the cells whose centres they hold.
 TEST(Geometry, PolygonAndBoxHolesRemoveTheirCells) {
-  auto volume = [](int dim, const std::string& body, const std::string& holes) {
-    const Model m = build_model(test::deck_from(
-        "model: {dimension: " + std::to_string(dim) + (dim == 2 ? ", thickness: 0.01" : "") + "}\n"
-        "material: {youngs_modulus: 72.0e9, density: 2440}\n"
-        "discretization: {spacing: 0.01, body: {box: " + body + "}, holes: " + holes + "}\n"
-        "damage: {enabled: false}\nsolver: {steps: 1}\n"));
+  // A plate or block 0.1 m a side.
+  auto volume = [](int dim, const std::vector<DeckBuilder>& holes) {
+    DeckBuilder d;
+    d.set("model.dimension", dim);
+    if (dim == 2) d.set("model.thickness", 0.01);
+    d.set("material.youngs_modulus", 72.0e9)
+        .set("material.density", 2440.0)
+        .set("discretization.spacing", 0.01)
+        .set("discretization.body.box.min", std::vector<double>(dim, 0.0))
+        .set("discretization.body.box.max", std::vector<double>(dim, 0.1))
+        .set("discretization.holes", std::vector<std::string>{})  // [] when there are none
+        .set("damage.enabled", false)
+        .set("solver.steps", 1);
+    for (const DeckBuilder& hole : holes) d.append("discretization.holes", hole);
+    const Model m = build_model(d.build("holed body"));
     double v = 0;
     for (double x : m.nodes.volume) v += x;
     return v;
   };
-  const double plate = volume(2, "{min: [0, 0], max: [0.1, 0.1]}", "[]");
-  const double holed = volume(
-      2, "{min: [0, 0], max: [0.1, 0.1]}",
-      "[{polygon: [[0.02, 0.02], [0.06, 0.02], [0.06, 0.04], [0.04, 0.04], [0.04, 0.07], [0.02, 0.07]]}]");
+  const std::vector<std::vector<double>> outline = {{0.02, 0.02}, {0.06, 0.02}, {0.06, 0.04},
+                                                    {0.04, 0.04}, {0.04, 0.07}, {0.02, 0.07}};
+  const double plate = volume(2, {});
+  const double holed = volume(2, {DeckBuilder().set("polygon", outline)});
   EXPECT_NEAR((plate - holed) / 0.01, 0.04 * 0.02 + 0.02 * 0.03, 1e-15);
-  const double block = volume(3, "{min: [0, 0, 0], max: [0.1, 0.1, 0.1]}", "[]");
-  const double cut = volume(3, "{min: [0, 0, 0], max: [0.1, 0.1, 0.1]}",
-                            "[{box: {min: [0.02, 0.02, 0.02], max: [0.05, 0.04, 0.1]}}]");
+  const double block = volume(3, {});
+  const double cut = volume(3, {test::box({0.02, 0.02, 0.02}, {0.05, 0.04, 0.1})});
   EXPECT_NEAR(block - cut, 0.03 * 0.02 * 0.08, 1e-15);
 }
 
@@ -99,10 +114,15 @@ TEST(Geometry, PointCloudBodyKeepsItsNodesAsWritten) {
     std::ofstream out(file);
     out << "x,y,z,volume\n0.0,0.0,0.0,2e-9\n0.002,0.0,0.0,1e-9\n0.001,0.003,-0.001,3e-9\n";
   }
-  const Model m = build_model(test::deck_from(
-      "model: {dimension: 3}\nmaterial: {youngs_modulus: 72.0e9, density: 2440}\n"
-      "discretization: {spacing: 0.001, body: {points: " + file + "}}\n"
-      "damage: {enabled: false}\nsolver: {steps: 1}\n"));
+  const Model m = build_model(DeckBuilder()
+                                  .set("model.dimension", 3)
+                                  .set("material.youngs_modulus", 72.0e9)
+                                  .set("material.density", 2440.0)
+                                  .set("discretization.spacing", 0.001)
+                                  .set("discretization.body.points", file)
+                                  .set("damage.enabled", false)
+                                  .set("solver.steps", 1)
+                                  .build("point cloud"));
   ASSERT_EQ(m.nodes.size(), 3u);
   const double expect[3][4] = {{0, 0, 0, 2e-9}, {0.002, 0, 0, 1e-9}, {0.001, 0.003, -0.001, 3e-9}};
   for (std::size_t i = 0; i < 3; ++i) {

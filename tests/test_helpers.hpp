@@ -1,21 +1,30 @@
 #pragma once
-// Small builders shared by the tests: decks from text, and models on uniform grids.
-#include <string>
-
+// Small builders shared by the tests: deck pieces, and models on uniform grids.
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "analysis/energy.hpp"
 #include "run/simulation.hpp"
 #include "input/deck.hpp"
+#include "input/deck_builder.hpp"
 #include "setup/build_model.hpp"
 #include "solver/internal_forces.hpp"
 #include "solver/velocity_verlet.hpp"
 
 namespace periadapt::test {
 
-inline Deck deck_from(const std::string& yaml) { return parse_deck(yaml, "test.yaml"); }
+// A box region, {box: {min: lo, max: hi}} (loads, boundary conditions, holes, no_fail zones,
+// refinement zones).
+inline DeckBuilder box(const std::vector<double>& lo, const std::vector<double>& hi) {
+  return DeckBuilder().set("box.min", lo).set("box.max", hi);
+}
+
+// The components of a prescribed motion or an initial field, each an expression in x, y, z, t;
+// std::nullopt leaves a component free (YAML null).
+using Components = std::vector<std::optional<std::string>>;
 
 // Displaces every node by the homogeneous strain eps (u = eps x, first `ns.dim` components).
 inline void apply_homogeneous_strain(NodeSet& ns, const double eps[3][3]) {
@@ -45,21 +54,13 @@ inline double bar_tension(Model& m, double s, double length) {
   return -right;
 }
 
-// A minimal valid 2D deck; `extra` is appended (later keys of the same section are not merged,
-// so callers pass whole sections they want to change through `sections`).
-inline std::string basic_deck(const std::string& model, const std::string& material,
-                              const std::string& disc, const std::string& rest) {
-  return "model:\n" + model + "material:\n" + material + "discretization:\n" + disc + rest;
-}
-
 struct EnergyRun {
   bool ok = true;
   double e0 = 0, worst_drift = 0, max_kinetic = 0;  // drift relative to e0
 };
 
 // Runs a deck's explicit steps and follows kinetic + strain energy (every `every` steps).
-inline EnergyRun run_energy_history(const std::string& yaml, int every = 1) {
-  const Deck dk = deck_from(yaml);
+inline EnergyRun run_energy_history(const Deck& dk, int every = 1) {
   Model m = build_model(dk);
   const TimeStepChoice ts = choose_time_step(dk, m);
   VelocityVerlet vv(m, ts.dt);

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "analysis/energy.hpp"
+#include "input/deck_builder.hpp"
 #include "setup/build_model.hpp"
 #include "solver/dynamic_relaxation.hpp"
 #include "solver/internal_forces.hpp"
@@ -35,19 +36,30 @@ double classical_energy(const Case& c, double E, const double eps[3][3]) {
   return 0.5 * lambda * tr * tr + mu * ee;
 }
 
+// The model and material sections of an LPS body (E = 70 GPa, rho = 2700 kg/m^3).
+DeckBuilder lps_body(const Case& c) {
+  DeckBuilder d;
+  d.set("model.dimension", c.dim);
+  if (c.dim == 2) d.set("model.plane", c.plane);
+  d.set("model.formulation", "lps")
+      .set("material.youngs_modulus", 70.0e9)
+      .set("material.density", 2700.0)
+      .set("material.poisson_ratio", c.nu);
+  return d;
+}
+
 double lps_bulk_energy(const Case& c, const double eps[3][3], double m) {
   const double E = 70e9;
-  std::string yaml = "model: {dimension: " + std::to_string(c.dim) +
-                     (c.dim == 2 ? std::string(", plane: ") + c.plane : std::string()) +
-                     ", formulation: lps}\n"
-                     "material: {youngs_modulus: 70.0e9, density: 2700, poisson_ratio: " +
-                     std::to_string(c.nu) + "}\n";
-  const std::string box = c.dim == 2 ? "{min: [-0.1, -0.1], max: [0.1, 0.1]}"
-                                     : "{min: [-0.05, -0.05, -0.05], max: [0.05, 0.05, 0.05]}";
-  yaml += "discretization: {spacing: 0.01, horizon_factor: " + std::to_string(m) +
-          ", quadrature: subcell, body: {box: " + box + "}}\n"
-          "damage: {enabled: false}\nsolver: {steps: 1}\n";
-  Model md = build_model(test::deck_from(yaml));
+  const double half = c.dim == 2 ? 0.1 : 0.05;
+  Model md = build_model(lps_body(c)
+                             .set("discretization.spacing", 0.01)
+                             .set("discretization.horizon_factor", m)
+                             .set("discretization.quadrature", "subcell")
+                             .set("discretization.body.box.min", std::vector<double>(c.dim, -half))
+                             .set("discretization.body.box.max", std::vector<double>(c.dim, half))
+                             .set("damage.enabled", false)
+                             .set("solver.steps", 1)
+                             .build("block"));
   NodeSet& ns = md.nodes;
   std::size_t centre = 0;
   double best = 1e9;
@@ -89,22 +101,40 @@ namespace {
 
 // Relaxed plate in uniaxial tension; returns eps_yy / eps_xx from the bulk displacement field.
 double lateral_ratio(const std::string& formulation, double nu) {
-  std::string yaml =
-      "model: {dimension: 2, plane: stress, formulation: " + formulation + "}\n"
-      "material: {youngs_modulus: 70.0e9, density: 2700" +
-      (formulation == "lps" ? ", poisson_ratio: " + std::to_string(nu) : std::string()) + "}\n"
-      "discretization: {spacing: 0.005, horizon_factor: 3, quadrature: ipa_hybrid,"
-      " registration: node_on_edge, surface_correction: " +
-      std::string(formulation == "pmb" ? "true" : "false") +
-      ", body: {box: {min: [-0.1, -0.05], max: [0.1, 0.05]}}}\n"
-      "loads:\n"
-      " - {type: traction, region: {box: {min: [0.1, -0.05], max: [0.1, 0.05]}}, value: [7.0e6, 0]}\n"
-      " - {type: traction, region: {box: {min: [-0.1, -0.05], max: [-0.1, 0.05]}}, value: [-7.0e6, 0]}\n"
-      "boundary_conditions:\n"
-      " - {region: {box: {min: [0, -0.05], max: [0, 0.05]}}, displacement: [0, null]}\n"
-      " - {region: {box: {min: [-0.1, 0], max: [0.1, 0]}}, displacement: [null, 0]}\n"
-      "damage: {enabled: false}\nsolver: {type: relaxation, tolerance: 1.0e-7}\n";
-  Model m = build_model(test::deck_from(yaml));
+  DeckBuilder d;
+  d.set("model.dimension", 2)
+      .set("model.plane", "stress")
+      .set("model.formulation", formulation)
+      .set("material.youngs_modulus", 70.0e9)
+      .set("material.density", 2700.0);
+  if (formulation == "lps") d.set("material.poisson_ratio", nu);
+  d.set("discretization.spacing", 0.005)
+      .set("discretization.horizon_factor", 3.0)
+      .set("discretization.quadrature", "ipa_hybrid")
+      .set("discretization.registration", "node_on_edge")
+      .set("discretization.surface_correction", formulation == "pmb")
+      .set("discretization.body.box.min", {-0.1, -0.05})
+      .set("discretization.body.box.max", {0.1, 0.05})
+      .append("loads", DeckBuilder()
+                           .set("type", "traction")
+                           .set("region", test::box({0.1, -0.05}, {0.1, 0.05}))
+                           .set("value", {7.0e6, 0.0}))
+      .append("loads", DeckBuilder()
+                           .set("type", "traction")
+                           .set("region", test::box({-0.1, -0.05}, {-0.1, 0.05}))
+                           .set("value", {-7.0e6, 0.0}))
+      .append("boundary_conditions",
+              DeckBuilder()
+                  .set("region", test::box({0.0, -0.05}, {0.0, 0.05}))
+                  .set("displacement", test::Components{"0", std::nullopt}))
+      .append("boundary_conditions",
+              DeckBuilder()
+                  .set("region", test::box({-0.1, 0.0}, {0.1, 0.0}))
+                  .set("displacement", test::Components{std::nullopt, "0"}))
+      .set("damage.enabled", false)
+      .set("solver.type", "relaxation")
+      .set("solver.tolerance", 1.0e-7);
+  Model m = build_model(d.build("plate in tension"));
   RelaxationOptions ro;
   ro.tolerance = 1e-7;
   EXPECT_TRUE(run_dynamic_relaxation(m, ro, [](const RelaxationStepReport&) {}));
@@ -140,16 +170,15 @@ namespace {
 // moments vanish), for homogeneous strains of every kind.
 double worst_edge_node_energy_error(const Case& c, const std::string& correction) {
   const double E = 70e9, dx = 0.01, delta = 3 * dx;
-  const std::string box = c.dim == 2 ? "{min: [0, 0], max: [0.12, 0.1]}"
-                                     : "{min: [0, 0, 0], max: [0.1, 0.09, 0.08]}";
-  const std::string yaml =
-      "model: {dimension: " + std::to_string(c.dim) +
-      (c.dim == 2 ? std::string(", plane: ") + c.plane : std::string()) +
-      ", formulation: lps}\nmaterial: {youngs_modulus: 70.0e9, density: 2700, poisson_ratio: " +
-      fmt::format("{:.17g}", c.nu) + "}\ndiscretization: {spacing: 0.01, surface_correction: " +
-      correction + ", body: {box: " + box + "}}\ndamage: {enabled: false}\nsolver: {steps: 1}\n";
-  Model md = build_model(test::deck_from(yaml));
   const double hi[3] = {c.dim == 2 ? 0.12 : 0.1, c.dim == 2 ? 0.1 : 0.09, 0.08};
+  DeckBuilder d = lps_body(c);
+  d.set("discretization.spacing", 0.01)
+      .set("discretization.surface_correction", correction)
+      .set("discretization.body.box.min", std::vector<double>(c.dim, 0.0))
+      .set("discretization.body.box.max", std::vector<double>(hi, hi + c.dim))
+      .set("damage.enabled", false)
+      .set("solver.steps", 1);
+  Model md = build_model(d.build("block"));
   const double g = 1e-7;  // small: the kernel's geometrically exact stretch is linear to 1e-7
   const double strains[4][3][3] = {{{g, 0, 0}, {0, 0, 0}, {0, 0, 0}},
                                    {{0, 0, 0}, {0, g, 0}, {0, 0, -0.7 * g}},
@@ -202,14 +231,24 @@ TEST(Lps, MomentsSurfaceCorrectionGivesEdgeNodesTheClassicalEnergyOfEveryStrain)
 TEST(Lps, GaussianPulseConservesEnergyInAPlate) {
   // Explicit LPS dynamics (nu = 0.2, plane strain): a Gaussian pulse crossing a free plate keeps
   // kinetic + strain energy within 0.5% (the stable step from the equivalent bond-based model).
-  const std::string yaml =
-      "model: {dimension: 2, plane: strain, formulation: lps}\n"
-      "material: {youngs_modulus: 1.0, density: 1.0, poisson_ratio: 0.2}\n"
-      "discretization: {spacing: 0.001, horizon_factor: 3.015, body: {box: {min: [0, 0], max: [0.1, 0.04]}}}\n"
-      "initial_conditions: {displacement: ['1e-5*exp(-((x-0.05)/0.01)^2)', '0']}\n"
-      "damage: {enabled: false}\n"
-      "solver: {end_time: 0.06, safety_factor: 0.5}\n";
-  const test::EnergyRun r = test::run_energy_history(yaml, 10);
+  const Deck dk = DeckBuilder()
+                      .set("model.dimension", 2)
+                      .set("model.plane", "strain")
+                      .set("model.formulation", "lps")
+                      .set("material.youngs_modulus", 1.0)
+                      .set("material.density", 1.0)
+                      .set("material.poisson_ratio", 0.2)
+                      .set("discretization.spacing", 0.001)
+                      .set("discretization.horizon_factor", 3.015)
+                      .set("discretization.body.box.min", {0.0, 0.0})
+                      .set("discretization.body.box.max", {0.1, 0.04})
+                      .set("initial_conditions.displacement",
+                           test::Components{"1e-5*exp(-((x-0.05)/0.01)^2)", "0"})
+                      .set("damage.enabled", false)
+                      .set("solver.end_time", 0.06)
+                      .set("solver.safety_factor", 0.5)
+                      .build("pulse in a plate");
+  const test::EnergyRun r = test::run_energy_history(dk, 10);
   ASSERT_TRUE(r.ok);
   ASSERT_GT(r.e0, 0);
   EXPECT_GT(r.max_kinetic, 0.3 * r.e0);
@@ -221,19 +260,31 @@ TEST(Lps, GaussianPulseConservesEnergyInAPlate) {
 
 TEST(Lps, DualHorizonFormMatchesOnUniformGridsAndConservesMomentumOnRefinedOnes) {
   // Uniform grid: the dual-horizon LPS forces equal the plain ones (same memberships both ways).
-  auto deck = [](const std::string& pairing, const std::string& adapt) {
-    return "model: {dimension: 2, plane: strain, formulation: lps}\n"
-           "material: {youngs_modulus: 70.0e9, density: 2700, poisson_ratio: 0.2}\n"
-           "discretization: {spacing: 0.001, horizon_factor: 3, quadrature: ipa_hybrid, body: "
-           "{box: {min: [0, 0], max: [0.03, 0.016]}}}\n"
-           "initial_conditions: {velocity: ['5*sin(200*x)', '3*cos(150*y)'], displacement: "
-           "['1e-6*sin(300*x)*cos(200*y)', '2e-6*x*y/0.0005']}\n"
-           "damage: {enabled: false}\n" + adapt +
-           "solver: {time_step: 2.0e-8, steps: 60, bond_pairing: " + pairing + "}\n";
+  auto deck = [](const std::string& pairing) {
+    DeckBuilder d;
+    d.set("model.dimension", 2)
+        .set("model.plane", "strain")
+        .set("model.formulation", "lps")
+        .set("material.youngs_modulus", 70.0e9)
+        .set("material.density", 2700.0)
+        .set("material.poisson_ratio", 0.2)
+        .set("discretization.spacing", 0.001)
+        .set("discretization.horizon_factor", 3.0)
+        .set("discretization.quadrature", "ipa_hybrid")
+        .set("discretization.body.box.min", {0.0, 0.0})
+        .set("discretization.body.box.max", {0.03, 0.016})
+        .set("initial_conditions.velocity", test::Components{"5*sin(200*x)", "3*cos(150*y)"})
+        .set("initial_conditions.displacement",
+             test::Components{"1e-6*sin(300*x)*cos(200*y)", "2e-6*x*y/0.0005"})
+        .set("damage.enabled", false)
+        .set("solver.time_step", 2.0e-8)
+        .set("solver.steps", 60)
+        .set("solver.bond_pairing", pairing);
+    return d;
   };
   {
-    Model a = build_model(test::deck_from(deck("source_horizon", "")));
-    Model b = build_model(test::deck_from(deck("dual_horizon", "")));
+    Model a = build_model(deck("source_horizon").build("plate"));
+    Model b = build_model(deck("dual_horizon").build("plate"));
     internal_forces(a, false);
     internal_forces(b, false);
     double worst = 0, scale = 0;
@@ -245,12 +296,12 @@ TEST(Lps, DualHorizonFormMatchesOnUniformGridsAndConservesMomentumOnRefinedOnes)
     EXPECT_LT(worst, 1e-9 * scale);
   }
   // Half refined, free run: momentum drifts with the plain form, not with the dual one.
-  const std::string refine =
-      "adapt: {initial_refinement: [{region: {box: {min: [0, 0], max: [0.0145, 0.016]}}, level: 1}]}\n";
+  const DeckBuilder refine =
+      DeckBuilder().set("region", test::box({0.0, 0.0}, {0.0145, 0.016})).set("level", 1);
   double drift[2];
   int v = 0;
   for (const char* pairing : {"source_horizon", "dual_horizon"}) {
-    Model m = build_model(test::deck_from(deck(pairing, refine)));
+    Model m = build_model(deck(pairing).append("adapt.initial_refinement", refine).build("plate"));
     drift[v++] = test::momentum_drift(m, 2e-8, 60);
   }
   EXPECT_GT(drift[0], 1e-9);
@@ -270,14 +321,25 @@ TEST(Lps, GaussianPulseThroughARefinedHalfKeepsItsEnergyBounded) {
   // 5%. The dual-horizon pairing, the gradient of the total strain energy, keeps it as well as
   // the uniform plate does (0.5%).
   auto deck = [](const std::string& pairing) {
-    return "model: {dimension: 2, plane: strain, formulation: lps}\n"
-           "material: {youngs_modulus: 1.0, density: 1.0, poisson_ratio: 0.2}\n"
-           "discretization: {spacing: 0.001, body: {box: {min: [0, 0], max: [0.1, 0.04]}}}\n"
-           "initial_conditions: {displacement: ['1e-5*exp(-((x-0.04)/0.01)^2)', '0']}\n"
-           "damage: {enabled: false}\n"
-           "adapt: {initial_refinement: [{region: {box: {min: [0.05, 0], max: [0.1, 0.04]}}, "
-           "level: 1}]}\n"
-           "solver: {end_time: 0.06, safety_factor: 0.5, bond_pairing: " + pairing + "}\n";
+    return DeckBuilder()
+        .set("model.dimension", 2)
+        .set("model.plane", "strain")
+        .set("model.formulation", "lps")
+        .set("material.youngs_modulus", 1.0)
+        .set("material.density", 1.0)
+        .set("material.poisson_ratio", 0.2)
+        .set("discretization.spacing", 0.001)
+        .set("discretization.body.box.min", {0.0, 0.0})
+        .set("discretization.body.box.max", {0.1, 0.04})
+        .set("initial_conditions.displacement",
+             test::Components{"1e-5*exp(-((x-0.04)/0.01)^2)", "0"})
+        .set("damage.enabled", false)
+        .append("adapt.initial_refinement",
+                DeckBuilder().set("region", test::box({0.05, 0.0}, {0.1, 0.04})).set("level", 1))
+        .set("solver.end_time", 0.06)
+        .set("solver.safety_factor", 0.5)
+        .set("solver.bond_pairing", pairing)
+        .build("pulse through a refined half");
   };
   const test::EnergyRun plain = test::run_energy_history(deck("source_horizon"), 10);
   const test::EnergyRun dual = test::run_energy_history(deck("dual_horizon"), 10);
@@ -293,18 +355,14 @@ namespace {
 
 // An LPS block (E = 70 GPa, G0 = 350 J/m^2, dx = 10 mm, m = 3) of `edge` metres a side.
 Model lps_fracture_model(const Case& c, double edge) {
-  const std::string e = fmt::format("{}", edge);
-  const std::string yaml =
-      "model: {dimension: " + std::to_string(c.dim) +
-      (c.dim == 2 ? std::string(", plane: ") + c.plane : std::string()) +
-      ", formulation: lps}\n"
-      "material: {youngs_modulus: 70.0e9, density: 2700, fracture_energy: 350, poisson_ratio: " +
-      fmt::format("{:.17g}", c.nu) + "}\n" +
-      "discretization: {spacing: 0.01, horizon_factor: 3.0, body: {box: " +
-      (c.dim == 2 ? "{min: [0, 0], max: [" + e + ", " + e + "]}"
-                  : "{min: [0, 0, 0], max: [" + e + ", " + e + ", " + e + "]}") +
-      "}}\nsolver: {steps: 1}\n";
-  return build_model(test::deck_from(yaml));
+  return build_model(lps_body(c)
+                         .set("material.fracture_energy", 350.0)
+                         .set("discretization.spacing", 0.01)
+                         .set("discretization.horizon_factor", 3.0)
+                         .set("discretization.body.box.min", std::vector<double>(c.dim, 0.0))
+                         .set("discretization.body.box.max", std::vector<double>(c.dim, edge))
+                         .set("solver.steps", 1)
+                         .build("block"));
 }
 
 double madenci_oterkus_s0(const Case& c, double E, double G0, double delta) {

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <numbers>
 
+#include "input/deck_builder.hpp"
 #include "material/micromodulus.hpp"
 #include "setup/build_model.hpp"
-#include "test_helpers.hpp"
 
 using namespace periadapt;
 constexpr double pi = std::numbers::pi;
@@ -72,15 +72,19 @@ TEST(CriticalStretch, BreakingEveryBondAcrossAPlaneTakesTheFractureEnergy) {
   for (int dim : {1, 2, 3})
     for (const char* shape : {"constant", "triangular"}) {
       SCOPED_TRACE(std::to_string(dim) + "D " + shape);
-      std::string yaml = "model: {dimension: " + std::to_string(dim) +
-                         (dim == 1 ? ", thickness: 2.0e-4" : dim == 2 ? ", thickness: 5.0e-3" : "") +
-                         "}\nmaterial: {youngs_modulus: 72.0e9, density: 2440, fracture_energy: 135, "
-                         "micromodulus: " + shape + "}\n"
-                         "discretization: {spacing: 1.0e-3, horizon_factor: 3, body: {box: {min: [" +
-                         (dim == 1 ? "0], max: [0.01]" : dim == 2 ? "0, 0], max: [0.01, 0.01]"
-                                                                 : "0, 0, 0], max: [0.01, 0.01, 0.01]") +
-                         "}}}\nsolver: {steps: 1}\n";
-      const Model md = build_model(test::deck_from(yaml));
+      DeckBuilder d;
+      d.set("model.dimension", dim);
+      if (dim < 3) d.set("model.thickness", dim == 1 ? area : thickness);
+      d.set("material.youngs_modulus", 72.0e9)
+          .set("material.density", 2440.0)
+          .set("material.fracture_energy", 135.0)
+          .set("material.micromodulus", shape)
+          .set("discretization.spacing", 1.0e-3)
+          .set("discretization.horizon_factor", 3.0)
+          .set("discretization.body.box.min", std::vector<double>(dim, 0.0))
+          .set("discretization.body.box.max", std::vector<double>(dim, 0.01))
+          .set("solver.steps", 1);
+      const Model md = build_model(d.build("block"));
       const double c0 = md.nodes.micromodulus[0], s0 = md.nodes.critical_stretch[0];
       const bool tri = std::string(shape) == "triangular";
       auto w = [&](double xi) { return c0 * (tri ? 1 - xi / delta : 1.0) * s0 * s0 * xi / 2; };

@@ -8,6 +8,7 @@
 #include "adapt/adaptor.hpp"
 #include "adapt/refine.hpp"
 #include "analysis/energy.hpp"
+#include "input/deck_builder.hpp"
 #include "input/deck_error.hpp"
 #include "solver/internal_forces.hpp"
 #include "setup/build_model.hpp"
@@ -19,18 +20,29 @@ using namespace periadapt;
 
 namespace {
 
-// A 40 mm x 20 mm glass plate (1 mm, m = 3) with a Gaussian bump of displacement at its centre,
-// the left half refined to level 1 (0.5 mm, delta halved): the bump's waves cross the interface.
-Model refined_plate(const std::string& extra = "") {
-  const Deck dk = test::deck_from(
-      "model: {dimension: 2, plane: stress}\n"
-      "material: {youngs_modulus: 72.0e9, density: 2440, fracture_energy: 135}\n"
-      "discretization: {spacing: 0.001, horizon_factor: 3, body: {box: {min: [0, 0], max: [0.04, "
-      "0.02]}}}\n"
-      "initial_conditions: {displacement: ['1e-6*exp(-((x-0.02)^2+(y-0.01)^2)/0.003^2)', "
-      "'0.5e-6*exp(-((x-0.02)^2+(y-0.01)^2)/0.003^2)']}\n"
-      "damage: {enabled: false}\n"
-      "solver: {time_step: 1.0e-8, steps: 1}\n" + extra);
+// A 40 mm x 20 mm glass plate (1 mm, m = 3) with a Gaussian bump of displacement at its centre.
+DeckBuilder plate_deck() {
+  const std::string bump = "exp(-((x-0.02)^2+(y-0.01)^2)/0.003^2)";
+  DeckBuilder d;
+  d.set("model.dimension", 2)
+      .set("model.plane", "stress")
+      .set("material.youngs_modulus", 72.0e9)
+      .set("material.density", 2440.0)
+      .set("material.fracture_energy", 135.0)
+      .set("discretization.spacing", 0.001)
+      .set("discretization.horizon_factor", 3.0)
+      .set("discretization.body.box.min", {0.0, 0.0})
+      .set("discretization.body.box.max", {0.04, 0.02})
+      .set("initial_conditions.displacement", test::Components{"1e-6*" + bump, "0.5e-6*" + bump})
+      .set("damage.enabled", false)
+      .set("solver.time_step", 1.0e-8)
+      .set("solver.steps", 1);
+  return d;
+}
+
+// The plate of `dk` with its left half refined to level 1 (0.5 mm, delta halved): the bump's
+// waves cross the interface.
+Model refined_plate(const Deck& dk) {
   Model m = build_model(dk);
   std::vector<std::uint32_t> parents;
   for (std::uint32_t i = 0; i < m.nodes.size(); ++i)
@@ -40,6 +52,8 @@ Model refined_plate(const std::string& extra = "") {
   refine_nodes(m, parents, spec);
   return m;
 }
+
+Model refined_plate() { return refined_plate(plate_deck().build("bumped plate")); }
 
 struct Outcome {
   std::vector<double> u;  // x then y displacement of every node at the end
@@ -336,11 +350,15 @@ TEST(Multirate, NodesWithPrescribedMotionsStayOnTheFineStep) {
   // reactions (and the external work) are computed every step. The work done on the plate agrees
   // with single-rate stepping to the accuracy of the time integration (the displacements differ
   // by a few percent at this dt, see above; the work is an integral and agrees better).
-  const std::string bc =
-      "boundary_conditions: [{region: {box: {min: [0.0395, 0], max: [0.04, 0.02]}}, velocity: "
-      "[1.0, 0]}]\n";
+  const Deck pulled =
+      plate_deck()
+          .append("boundary_conditions",
+                  DeckBuilder()
+                      .set("region", test::box({0.0395, 0.0}, {0.04, 0.02}))
+                      .set("velocity", test::Components{"1.0", "0"}))
+          .build("pulled plate");
   auto work = [&](bool multirate) {
-    Model m = refined_plate(bc);
+    Model m = refined_plate(pulled);
     const double dt = 0.3 * stable_time_step(m).dt;
     VelocityVerlet vv(m, dt);
     if (multirate) vv.set_multirate(0.5);
@@ -366,43 +384,53 @@ TEST(Multirate, NodesWithPrescribedMotionsStayOnTheFineStep) {
 }
 
 TEST(Multirate, DecksWhoseForcesAreNotRowLocalAreRefusedOthersAccepted) {
-  const std::string mat = "material: {youngs_modulus: 72.0e9, density: 2440, fracture_energy: 135}\n";
-  const std::string head = "model: {dimension: 2, plane: stress}\n" + mat;
-  const std::string disc =
-      "discretization: {spacing: 0.001, horizon_factor: 3, body: {box: {min: [0, 0], max: [0.01, "
-      "0.01]}}}\n";
-  auto key_of = [](const std::string& yaml) {
+  // A 10 mm glass plate (PMB, or LPS with nu = 0.25); `stepped` adds an explicit solver section.
+  auto plate = [](bool lps = false) {
+    DeckBuilder d;
+    d.set("model.dimension", 2).set("model.plane", "stress");
+    if (lps) d.set("model.formulation", "lps").set("material.poisson_ratio", 0.25);
+    d.set("material.youngs_modulus", 72.0e9)
+        .set("material.density", 2440.0)
+        .set("material.fracture_energy", 135.0)
+        .set("discretization.spacing", 0.001)
+        .set("discretization.horizon_factor", 3.0)
+        .set("discretization.body.box.min", {0.0, 0.0})
+        .set("discretization.body.box.max", {0.01, 0.01});
+    return d;
+  };
+  auto stepped = [&](bool lps = false) {
+    DeckBuilder d = plate(lps);
+    d.set("solver.time_step", 1e-8).set("solver.steps", 1);
+    return d;
+  };
+  auto key_of = [](const DeckBuilder& d) {
     try {
-      test::deck_from(yaml);
+      d.build("multi-rate plate");
     } catch (const DeckError& e) {
       return e.key();
     }
     return std::string("(accepted)");
   };
-  EXPECT_EQ(key_of(head + disc + "solver: {time_step: 1e-8, steps: 1, multirate: true}\n"),
-            "(accepted)");
-  EXPECT_EQ(key_of("model: {dimension: 2, plane: stress, formulation: lps}\n"
-                   "material: {youngs_modulus: 72.0e9, poisson_ratio: 0.25, density: 2440, "
-                   "fracture_energy: 135}\n" + disc +
-                   "solver: {time_step: 1e-8, steps: 1, multirate: true}\n"),
+  EXPECT_EQ(key_of(stepped().set("solver.multirate", true)), "(accepted)");
+  EXPECT_EQ(key_of(stepped(true).set("solver.multirate", true)), "solver.multirate");
+  EXPECT_EQ(key_of(stepped()
+                       .set("solver.multirate", true)
+                       .set("solver.bond_pairing", "dual_horizon")),
             "solver.multirate");
-  EXPECT_EQ(key_of(head + disc +
-                   "solver: {time_step: 1e-8, steps: 1, multirate: true, bond_pairing: "
-                   "dual_horizon}\n"),
-            "solver.multirate");
-  EXPECT_EQ(key_of(head + disc +
-                   "boundary_conditions: [{region: {box: {min: [0, 0], max: [0.001, 0.01]}}, "
-                   "velocity: [0, 0]}]\n"
-                   "solver: {time_step: 1e-8, steps: 1, multirate: true}\n"),
+  EXPECT_EQ(key_of(stepped()
+                       .append("boundary_conditions",
+                               DeckBuilder()
+                                   .set("region", test::box({0.0, 0.0}, {0.001, 0.01}))
+                                   .set("velocity", test::Components{"0", "0"}))
+                       .set("solver.multirate", true)),
             "(accepted)");
-  EXPECT_EQ(key_of(head + disc + "solver: {type: static, multirate: true}\n"),
+  EXPECT_EQ(key_of(plate().set("solver.type", "static").set("solver.multirate", true)),
             "solver.multirate");
-  EXPECT_EQ(key_of(head + disc + "solver: {time_step: 1e-8, steps: 1, multirate: true, multirate_ratio: 4}\n"),
+  EXPECT_EQ(key_of(stepped().set("solver.multirate", true).set("solver.multirate_ratio", 4)),
             "(accepted)");
-  EXPECT_EQ(key_of(head + disc + "solver: {time_step: 1e-8, steps: 1, multirate: true, multirate_ratio: 5}\n"),
+  EXPECT_EQ(key_of(stepped().set("solver.multirate", true).set("solver.multirate_ratio", 5)),
             "solver.multirate_ratio");
-  EXPECT_EQ(key_of(head + disc + "solver: {time_step: 1e-8, steps: 1, multirate_ratio: 3}\n"),
-            "solver.multirate_ratio");
+  EXPECT_EQ(key_of(stepped().set("solver.multirate_ratio", 3)), "solver.multirate_ratio");
 }
 
 namespace {

@@ -4,12 +4,12 @@
 
 #include <cmath>
 
+#include "input/deck_builder.hpp"
 #include "material/lps.hpp"
 #include "material/pmb.hpp"
 #include "setup/build_model.hpp"
 #include "overlay/pddo.hpp"
 #include "studies/pdro_bar.hpp"
-#include "test_helpers.hpp"
 
 using namespace periadapt;
 
@@ -45,15 +45,20 @@ namespace {
 // Bonds broken by one force pass under a uniform strain eps along x, with or without the overlay.
 std::size_t broken_under_uniform_strain(double eps, bool overlay, bool lps = false,
                                         const char* sampling = "three_pairs") {
-  const std::string yaml =
-      std::string(lps ? "model: {dimension: 2, plane: strain, formulation: lps}\n"
-                      : "model: {dimension: 2, plane: strain}\n") +
-      "material: {youngs_modulus: 72.0e9, density: 2400, critical_stretch: 1.0e-3" +
-      (lps ? ", poisson_ratio: 0.22}\n" : "}\n") +
-      "discretization: {spacing: 0.001, horizon_factor: 4, body: {box: {min: [0, 0], max: [0.03, 0.02]}}}\n" +
-      (overlay ? std::string("damage: {overlay: {n: 4, sampling: ") + sampling + "}}\n" : std::string()) +
-      "solver: {steps: 1}\n";
-  Model m = build_model(test::deck_from(yaml));
+  DeckBuilder d;
+  d.set("model.dimension", 2).set("model.plane", "strain");
+  if (lps) d.set("model.formulation", "lps");
+  d.set("material.youngs_modulus", 72.0e9)
+      .set("material.density", 2400.0)
+      .set("material.critical_stretch", 1.0e-3);
+  if (lps) d.set("material.poisson_ratio", 0.22);
+  d.set("discretization.spacing", 0.001)
+      .set("discretization.horizon_factor", 4.0)
+      .set("discretization.body.box.min", {0.0, 0.0})
+      .set("discretization.body.box.max", {0.03, 0.02});
+  if (overlay) d.set("damage.overlay.n", 4).set("damage.overlay.sampling", sampling);
+  d.set("solver.steps", 1);
+  Model m = build_model(d.build("strained plate"));
   NodeSet& ns = m.nodes;
   for (std::size_t i = 0; i < ns.size(); ++i) {
     ns.u[0][i] = eps * ns.x[0][i];
@@ -105,12 +110,19 @@ TEST(Pdro, BarFailureStrainWithOverlayMatchesTheNativeFinerGrid) {
 TEST(Pdro, FreeThermalExpansionIsStressFree) {
   // Eq. 13: with s - alpha dT, the free expansion u = alpha dT x stretches every bond by exactly
   // alpha dT, so no bond carries force or energy; the same field without the thermal term does.
-  const std::string yaml =
-      "model: {dimension: 2, plane: strain}\n"
-      "material: {youngs_modulus: 72.0e9, density: 2400, fracture_energy: 6, thermal_strain: 5.0e-5}\n"
-      "discretization: {spacing: 0.001, horizon_factor: 4, body: {disk: {center: [0, 0], radius: 0.02}}}\n"
-      "solver: {steps: 1}\n";
-  Model m = build_model(test::deck_from(yaml));
+  Model m = build_model(DeckBuilder()
+                            .set("model.dimension", 2)
+                            .set("model.plane", "strain")
+                            .set("material.youngs_modulus", 72.0e9)
+                            .set("material.density", 2400.0)
+                            .set("material.fracture_energy", 6.0)
+                            .set("material.thermal_strain", 5.0e-5)
+                            .set("discretization.spacing", 0.001)
+                            .set("discretization.horizon_factor", 4.0)
+                            .set("discretization.body.disk.center", {0.0, 0.0})
+                            .set("discretization.body.disk.radius", 0.02)
+                            .set("solver.steps", 1)
+                            .build("disk"));
   NodeSet& ns = m.nodes;
   for (std::size_t i = 0; i < ns.size(); ++i) {
     ns.u[0][i] = 5e-5 * ns.x[0][i];

@@ -1,25 +1,35 @@
 // Pre-crack cutting removes exactly the hand-counted bonds.
 #include <gtest/gtest.h>
 
-#include "test_helpers.hpp"
+#include "input/deck_builder.hpp"
+#include "setup/build_model.hpp"
 
 using namespace periadapt;
 
 namespace {
+// A block of cells of 1 m, `side` cells a side.
+DeckBuilder grid(int dim, double side) {
+  return DeckBuilder()
+      .set("model.dimension", dim)
+      .set("material.youngs_modulus", 1.0)
+      .set("material.density", 1.0)
+      .set("material.critical_stretch", 0.01)
+      .set("discretization.spacing", 1.0)
+      .set("discretization.horizon_factor", 1.5)
+      .set("discretization.quadrature", "full")
+      .set("discretization.body.box.min", std::vector<double>(dim, 0.0))
+      .set("discretization.body.box.max", std::vector<double>(dim, side))
+      .set("solver.steps", 1);
+}
 // 4 x 4 cells of 1 m, nodes at cell centres, delta = 1.5 m (axial and diagonal neighbours).
-std::string grid2d(const std::string& crack) {
-  return "model: {dimension: 2}\n"
-         "material: {youngs_modulus: 1.0, density: 1.0, critical_stretch: 0.01}\n"
-         "discretization: {spacing: 1.0, horizon_factor: 1.5, quadrature: full,\n"
-         "                 body: {box: {min: [0, 0], max: [4, 4]}}}\n"
-         "cracks:\n  - segment: " + crack + "\n"
-         "solver: {steps: 1}\n";
+Deck grid2d(const std::vector<std::vector<double>>& crack) {
+  return grid(2, 4.0).append("cracks", DeckBuilder().set("segment", crack)).build("4 x 4 grid");
 }
 }  // namespace
 
 TEST(PreCrack, FullWidthCutRemovesTenPairs) {
   // Between rows y = 1.5 and y = 2.5: 4 vertical + 6 diagonal bonds = 10 pairs, 20 entries.
-  Model m = build_model(test::deck_from(grid2d("[[0, 2], [4, 2]]")));
+  Model m = build_model(grid2d({{0, 2}, {4, 2}}));
   EXPECT_EQ(m.nodes.size(), 16u);
   EXPECT_EQ(m.precrack_bonds, 20u);
 }
@@ -27,32 +37,27 @@ TEST(PreCrack, FullWidthCutRemovesTenPairs) {
 TEST(PreCrack, PartialCutRemovesFourPairs) {
   // Crack from x = 0 to 1.9: vertical bonds at x = 0.5, 1.5 and the two diagonals crossing
   // y = 2 at x = 1; the diagonals crossing at x = 2 are beyond the crack end.
-  Model m = build_model(test::deck_from(grid2d("[[0, 2], [1.9, 2]]")));
+  Model m = build_model(grid2d({{0, 2}, {1.9, 2}}));
   EXPECT_EQ(m.precrack_bonds, 8u);
 }
 
 TEST(PreCrack, CrackEndTouchingABondCutsIt) {
   // Ending exactly at x = 2 adds the two diagonals that cross y = 2 at x = 2.
-  Model m = build_model(test::deck_from(grid2d("[[0, 2], [2, 2]]")));
+  Model m = build_model(grid2d({{0, 2}, {2, 2}}));
   EXPECT_EQ(m.precrack_bonds, 12u);
 }
 
 TEST(PreCrack, QuadCutsTwelvePairsIn3D) {
   // 2 x 2 x 2 cells, delta = 1.5: across z = 1, 4 vertical bonds and 8 face diagonals.
-  const std::string yaml =
-      "model: {dimension: 3}\n"
-      "material: {youngs_modulus: 1.0, density: 1.0, critical_stretch: 0.01}\n"
-      "discretization: {spacing: 1.0, horizon_factor: 1.5, quadrature: full,\n"
-      "                 body: {box: {min: [0, 0, 0], max: [2, 2, 2]}}}\n"
-      "cracks:\n  - quad: [[0, 0, 1], [2, 0, 1], [2, 2, 1], [0, 2, 1]]\n"
-      "solver: {steps: 1}\n";
-  Model m = build_model(test::deck_from(yaml));
+  const std::vector<std::vector<double>> quad = {{0, 0, 1}, {2, 0, 1}, {2, 2, 1}, {0, 2, 1}};
+  Model m = build_model(
+      grid(3, 2.0).append("cracks", DeckBuilder().set("quad", quad)).build("2 x 2 x 2 grid"));
   EXPECT_EQ(m.nodes.size(), 8u);
   EXPECT_EQ(m.precrack_bonds, 24u);
 }
 
 TEST(PreCrack, InitialDamageCountsCutBonds) {
-  Model m = build_model(test::deck_from(grid2d("[[0, 2], [4, 2]]")));
+  Model m = build_model(grid2d({{0, 2}, {4, 2}}));
   // Corner node (0.5, 1.5): family = 2 axial in-plane + up + down + 3 diagonals... here we only
   // check that nodes next to the cut are damaged and nodes two rows away are not.
   for (std::size_t i = 0; i < m.nodes.size(); ++i) {

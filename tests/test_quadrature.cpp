@@ -7,9 +7,9 @@
 
 #include "discretize/lattice_moment.hpp"
 #include "discretize/partial_volume.hpp"
+#include "input/deck_builder.hpp"
 #include "setup/build_model.hpp"
 #include "studies/weak_directions.hpp"
-#include "test_helpers.hpp"
 
 using namespace periadapt;
 
@@ -17,14 +17,20 @@ namespace {
 
 // Sum of beta_j V_j over the family of the node nearest the body centre, plus its own cell.
 double covered_area(const std::string& quadrature, double m, double rotation_deg) {
-  const std::string yaml =
-      "model: {dimension: 2, plane: stress}\n"
-      "material: {youngs_modulus: 1.0, density: 1.0}\n"
-      "discretization: {spacing: 0.1, horizon_factor: " + std::to_string(m) +
-      ", quadrature: " + quadrature + ", rotation_deg: " + std::to_string(rotation_deg) +
-      ", body: {box: {min: [-2.05, -2.05], max: [2.05, 2.05]}}}\n"
-      "damage: {enabled: false}\nsolver: {steps: 1}\n";
-  Model md = build_model(test::deck_from(yaml));
+  Model md = build_model(DeckBuilder()
+                             .set("model.dimension", 2)
+                             .set("model.plane", "stress")
+                             .set("material.youngs_modulus", 1.0)
+                             .set("material.density", 1.0)
+                             .set("discretization.spacing", 0.1)
+                             .set("discretization.horizon_factor", m)
+                             .set("discretization.quadrature", quadrature)
+                             .set("discretization.rotation_deg", rotation_deg)
+                             .set("discretization.body.box.min", {-2.05, -2.05})
+                             .set("discretization.body.box.max", {2.05, 2.05})
+                             .set("damage.enabled", false)
+                             .set("solver.steps", 1)
+                             .build("square"));
   const NodeSet& ns = md.nodes;
   std::size_t c = 0;
   for (std::size_t i = 0; i < ns.size(); ++i)
@@ -128,13 +134,20 @@ TEST(Quadrature, LatticeBondMomentMatchesClosedFormsAndABuiltFamily) {
                 1.0 - 1.0 / (m * m), 1e-12);
   }
   for (const char* rule : {"pa_pdlammps", "ipa_hybrid"}) {
-    const Model m = build_model(parse_deck(std::string(R"(
-model: {dimension: 2, plane: stress}
-material: {youngs_modulus: 1.0, density: 1.0}
-discretization: {spacing: 1.0, horizon: 3.0, quadrature: )") + rule + R"(, body: {box: {min: [0, 0], max: [15, 15]}}}
-damage: {enabled: false}
-solver: {end_time: 1.0, time_step: 0.1}
-)", "lattice"));
+    const Model m = build_model(DeckBuilder()
+                                    .set("model.dimension", 2)
+                                    .set("model.plane", "stress")
+                                    .set("material.youngs_modulus", 1.0)
+                                    .set("material.density", 1.0)
+                                    .set("discretization.spacing", 1.0)
+                                    .set("discretization.horizon", 3.0)
+                                    .set("discretization.quadrature", rule)
+                                    .set("discretization.body.box.min", {0.0, 0.0})
+                                    .set("discretization.body.box.max", {15.0, 15.0})
+                                    .set("damage.enabled", false)
+                                    .set("solver.end_time", 1.0)
+                                    .set("solver.time_step", 0.1)
+                                    .build("lattice"));
     const NodeSet& ns = m.nodes;
     std::size_t c = 0;  // the node nearest the centre
     for (std::size_t i = 0; i < ns.size(); ++i)

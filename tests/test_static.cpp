@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "input/deck_builder.hpp"
 #include "setup/build_model.hpp"
 #include "solver/linear_static.hpp"
 #include "studies/bobaru_1d_static.hpp"
@@ -33,8 +34,7 @@ namespace {
 
 // Prescribes a linear field on every node within `layer` of the body boundary and solves: a
 // symmetric family gives zero net force for any linear field, so the interior must reproduce it.
-double patch_test_error(const std::string& yaml, double layer, BondPairing pairing) {
-  const Deck dk = test::deck_from(yaml);
+double patch_test_error(const Deck& dk, double layer, BondPairing pairing) {
   Model m = build_model(dk);
   const NodeSet& ns = m.nodes;
   const double g[3][3] = {{1e-3, 2e-4, -3e-4}, {-5e-4, 7e-4, 1e-4}, {2e-4, -1e-4, 4e-4}};
@@ -66,42 +66,52 @@ double patch_test_error(const std::string& yaml, double layer, BondPairing pairi
   return worst / scale;
 }
 
+// An undamaged body on the box from lo to hi (as many coordinates as dimensions).
+DeckBuilder undamaged_box(double E, double rho, double spacing, const std::vector<double>& lo,
+                          const std::vector<double>& hi) {
+  DeckBuilder d;
+  d.set("model.dimension", static_cast<int>(hi.size()))
+      .set("material.youngs_modulus", E)
+      .set("material.density", rho)
+      .set("discretization.spacing", spacing)
+      .set("discretization.body.box.min", lo)
+      .set("discretization.body.box.max", hi)
+      .set("damage.enabled", false);
+  return d;
+}
+
 }  // namespace
 
 TEST(Static, LinearFieldIsReproducedExactlyInThePlaneInterior) {
-  const std::string yaml =
-      "model: {dimension: 2, plane: stress}\n"
-      "material: {youngs_modulus: 70.0e9, density: 2700}\n"
-      "discretization: {spacing: 0.01, horizon_factor: 3.015, quadrature: subcell,"
-      " body: {box: {min: [0, 0], max: [0.3, 0.2]}}}\n"
-      "damage: {enabled: false}\nsolver: {type: static}\n";
-  EXPECT_LT(patch_test_error(yaml, 0.035, BondPairing::SourceHorizon), 1e-9);
-  EXPECT_LT(patch_test_error(yaml, 0.035, BondPairing::DualHorizon), 1e-9);
+  const Deck dk = undamaged_box(70.0e9, 2700.0, 0.01, {0.0, 0.0}, {0.3, 0.2})
+                      .set("model.plane", "stress")
+                      .set("discretization.horizon_factor", 3.015)
+                      .set("discretization.quadrature", "subcell")
+                      .set("solver.type", "static")
+                      .build("plate");
+  EXPECT_LT(patch_test_error(dk, 0.035, BondPairing::SourceHorizon), 1e-9);
+  EXPECT_LT(patch_test_error(dk, 0.035, BondPairing::DualHorizon), 1e-9);
 }
 
 TEST(Static, LinearFieldIsReproducedExactlyIn3DAndIn1D) {
-  const std::string y3 =
-      "model: {dimension: 3}\n"
-      "material: {youngs_modulus: 70.0e9, density: 2700}\n"
-      "discretization: {spacing: 0.01, horizon_factor: 2.5,"
-      " body: {box: {min: [0, 0, 0], max: [0.12, 0.1, 0.1]}}}\n"
-      "damage: {enabled: false}\nsolver: {type: static}\n";
+  const Deck y3 = undamaged_box(70.0e9, 2700.0, 0.01, {0.0, 0.0, 0.0}, {0.12, 0.1, 0.1})
+                      .set("discretization.horizon_factor", 2.5)
+                      .set("solver.type", "static")
+                      .build("block");
   EXPECT_LT(patch_test_error(y3, 0.03, BondPairing::SourceHorizon), 1e-9);
-  const std::string y1 =
-      "model: {dimension: 1}\n"
-      "material: {youngs_modulus: 1.0, density: 1.0, micromodulus: triangular}\n"
-      "discretization: {spacing: 0.1, horizon_factor: 4, body: {box: {min: [0], max: [5]}}}\n"
-      "damage: {enabled: false}\nsolver: {type: static}\n";
+  const Deck y1 = undamaged_box(1.0, 1.0, 0.1, {0.0}, {5.0})
+                      .set("material.micromodulus", "triangular")
+                      .set("discretization.horizon_factor", 4.0)
+                      .set("solver.type", "static")
+                      .build("bar");
   EXPECT_LT(patch_test_error(y1, 0.45, BondPairing::SourceHorizon), 1e-9);
 }
 
 TEST(Static, RigidMotionLeftFreeIsReportedAsSingular) {
-  const std::string yaml =
-      "model: {dimension: 2, plane: stress}\n"
-      "material: {youngs_modulus: 1.0, density: 1.0}\n"
-      "discretization: {spacing: 0.1, body: {box: {min: [0, 0], max: [1, 0.5]}}}\n"
-      "damage: {enabled: false}\nsolver: {type: static}\n";
-  Model m = build_model(test::deck_from(yaml));
+  Model m = build_model(undamaged_box(1.0, 1.0, 0.1, {0.0, 0.0}, {1.0, 0.5})
+                            .set("model.plane", "stress")
+                            .set("solver.type", "static")
+                            .build("free plate"));
   EXPECT_THROW(solve_linear_static(m, {}), SingularSystem);
   // x fixed on a whole edge, y free: vertical translation remains.
   std::vector<DisplacementConstraint> only_x;
@@ -111,13 +121,13 @@ TEST(Static, RigidMotionLeftFreeIsReportedAsSingular) {
 }
 
 TEST(Static, DualHorizonPairingEqualsSourcePairingOnAUniformGrid) {
-  const std::string yaml =
-      "model: {dimension: 2, plane: strain}\n"
-      "material: {youngs_modulus: 2.0, density: 1.0, micromodulus: triangular}\n"
-      "discretization: {spacing: 0.1, horizon_factor: 3.5, quadrature: subcell,"
-      " body: {box: {min: [0, 0], max: [1.2, 0.8]}}}\n"
-      "damage: {enabled: false}\nsolver: {type: static}\n";
-  Model m = build_model(test::deck_from(yaml));
+  Model m = build_model(undamaged_box(2.0, 1.0, 0.1, {0.0, 0.0}, {1.2, 0.8})
+                            .set("model.plane", "strain")
+                            .set("material.micromodulus", "triangular")
+                            .set("discretization.horizon_factor", 3.5)
+                            .set("discretization.quadrature", "subcell")
+                            .set("solver.type", "static")
+                            .build("plate"));
   const auto Ks = assemble_bond_stiffness(m.nodes, m.bonds, m.material.shape,
                                           BondPairing::SourceHorizon);
   const auto Kd = assemble_bond_stiffness(m.nodes, m.bonds, m.material.shape,
@@ -132,17 +142,26 @@ TEST(Static, DynamicRelaxationConvergesToTheLinearSolution) {
   // dynamic relaxation must agree with the linearized static solution up to the nonlinearity of
   // the strain (1e-5) and the error left by the relaxation tolerance (1e-7 of the load, times
   // the conditioning of the plate): 1e-3.
-  const std::string yaml =
-      "model: {dimension: 2, plane: stress}\n"
-      "material: {youngs_modulus: 70.0e9, density: 2700}\n"
-      "discretization: {spacing: 0.01, horizon_factor: 3.015, quadrature: ipa_hybrid,"
-      " body: {box: {min: [0, 0], max: [0.4, 0.2]}}}\n"
-      "loads: [{type: traction, region: {box: {min: [0.39, 0], max: [0.4, 0.2]}}, value: [700.0e3, 0]}]\n"
-      "boundary_conditions:\n"
-      " - {region: {box: {min: [0, 0], max: [0.01, 0.2]}}, displacement: [0, null]}\n"
-      " - {region: {box: {min: [0, 0], max: [0.01, 0.01]}}, displacement: [null, 0]}\n"
-      "damage: {enabled: false}\nsolver: {type: relaxation, tolerance: 1.0e-7}\n";
-  const Deck dk = test::deck_from(yaml);
+  const Deck dk =
+      undamaged_box(70.0e9, 2700.0, 0.01, {0.0, 0.0}, {0.4, 0.2})
+          .set("model.plane", "stress")
+          .set("discretization.horizon_factor", 3.015)
+          .set("discretization.quadrature", "ipa_hybrid")
+          .append("loads", DeckBuilder()
+                               .set("type", "traction")
+                               .set("region", test::box({0.39, 0.0}, {0.4, 0.2}))
+                               .set("value", {700.0e3, 0.0}))
+          .append("boundary_conditions",
+                  DeckBuilder()
+                      .set("region", test::box({0.0, 0.0}, {0.01, 0.2}))
+                      .set("displacement", test::Components{"0", std::nullopt}))
+          .append("boundary_conditions",
+                  DeckBuilder()
+                      .set("region", test::box({0.0, 0.0}, {0.01, 0.01}))
+                      .set("displacement", test::Components{std::nullopt, "0"}))
+          .set("solver.type", "relaxation")
+          .set("solver.tolerance", 1.0e-7)
+          .build("pulled plate");
   Model a = build_model(dk), b = build_model(dk);
   solve_linear_static(a, model_constraints(a));
   RelaxationOptions ro;
@@ -162,16 +181,30 @@ TEST(Static, DynamicRelaxationConvergesToTheLinearSolution) {
 TEST(Static, DynamicRelaxationBreaksBondsUnderARisingLoad) {
   // A notched bar pulled by a prescribed end displacement in 10 steps: bonds break at the notch
   // once the strain there exceeds s0, and the run still converges at every step.
-  const std::string yaml =
-      "model: {dimension: 2, plane: stress}\n"
-      "material: {youngs_modulus: 70.0e9, density: 2700, critical_stretch: 2.0e-3}\n"
-      "discretization: {spacing: 0.01, horizon_factor: 3, body: {box: {min: [0, 0], max: [0.3, 0.1]}}}\n"
-      "cracks: [{segment: [[0.15, 0.0], [0.15, 0.04]]}]\n"
-      "boundary_conditions:\n"
-      " - {region: {box: {min: [0, 0], max: [0.03, 0.1]}}, displacement: [0, 0]}\n"
-      " - {region: {box: {min: [0.27, 0], max: [0.3, 0.1]}}, displacement: [6.0e-4, 0]}\n"
-      "solver: {type: relaxation, load_steps: 10, tolerance: 1.0e-6}\n";
-  const Deck dk = test::deck_from(yaml);
+  const std::vector<std::vector<double>> notch = {{0.15, 0.0}, {0.15, 0.04}};
+  const Deck dk = DeckBuilder()
+                      .set("model.dimension", 2)
+                      .set("model.plane", "stress")
+                      .set("material.youngs_modulus", 70.0e9)
+                      .set("material.density", 2700.0)
+                      .set("material.critical_stretch", 2.0e-3)
+                      .set("discretization.spacing", 0.01)
+                      .set("discretization.horizon_factor", 3.0)
+                      .set("discretization.body.box.min", {0.0, 0.0})
+                      .set("discretization.body.box.max", {0.3, 0.1})
+                      .append("cracks", DeckBuilder().set("segment", notch))
+                      .append("boundary_conditions",
+                              DeckBuilder()
+                                  .set("region", test::box({0.0, 0.0}, {0.03, 0.1}))
+                                  .set("displacement", test::Components{"0", "0"}))
+                      .append("boundary_conditions",
+                              DeckBuilder()
+                                  .set("region", test::box({0.27, 0.0}, {0.3, 0.1}))
+                                  .set("displacement", test::Components{"6.0e-4", "0"}))
+                      .set("solver.type", "relaxation")
+                      .set("solver.load_steps", 10)
+                      .set("solver.tolerance", 1.0e-6)
+                      .build("notched bar");
   Model m = build_model(dk);
   RelaxationOptions ro;
   ro.load_steps = 10;

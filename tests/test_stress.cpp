@@ -3,11 +3,11 @@
 // density, is the classical C : eps wherever that energy density is classical.
 #include <gtest/gtest.h>
 
-#include <fmt/core.h>
-
 #include <cmath>
+#include <cstdio>
 #include <string>
 
+#include "input/deck_builder.hpp"
 #include "setup/build_model.hpp"
 #include "solver/internal_forces.hpp"
 #include "core/visible_gradient.hpp"
@@ -45,17 +45,20 @@ struct Errors {
 Errors worst_errors(const Case& c, const std::string& correction, double margin, int cut) {
   const double E = 70e9, dx = 0.01, delta = 3 * dx;
   const double hi[3] = {0.16, 0.14, c.dim == 3 ? 0.13 : 0.0};
-  const std::string box = c.dim == 2 ? "{min: [0, 0], max: [0.16, 0.14]}"
-                                     : "{min: [0, 0, 0], max: [0.16, 0.14, 0.13]}";
-  const std::string yaml = fmt::format(
-      "model: {{dimension: {}{}, formulation: {}}}\n"
-      "material: {{youngs_modulus: 70.0e9, density: 2700{}}}\n"
-      "discretization: {{spacing: {}, surface_correction: {}, body: {{box: {}}}}}\n"
-      "damage: {{enabled: false}}\nsolver: {{steps: 1}}\n",
-      c.dim, c.dim == 2 ? ", plane: " + c.plane : std::string(), c.formulation,
-      c.formulation == "lps" ? fmt::format(", poisson_ratio: {}", c.nu) : std::string(), dx,
-      correction, box);
-  Model md = build_model(test::deck_from(yaml));
+  DeckBuilder d;
+  d.set("model.dimension", c.dim);
+  if (c.dim == 2) d.set("model.plane", c.plane);
+  d.set("model.formulation", c.formulation)
+      .set("material.youngs_modulus", 70.0e9)
+      .set("material.density", 2700.0);
+  if (c.formulation == "lps") d.set("material.poisson_ratio", c.nu);
+  d.set("discretization.spacing", dx)
+      .set("discretization.surface_correction", correction)
+      .set("discretization.body.box.min", std::vector<double>(c.dim, 0.0))
+      .set("discretization.body.box.max", std::vector<double>(hi, hi + c.dim))
+      .set("damage.enabled", false)
+      .set("solver.steps", 1);
+  Model md = build_model(d.build("block"));
   const double g = 1e-7;
   const double strains[3][3][3] = {{{g, 0, 0}, {0, -0.3 * g, 0}, {0, 0, 0.2 * g}},
                                    {{0.3 * g, g, 0}, {g, -0.2 * g, 0.5 * g}, {0, 0.5 * g, g}},

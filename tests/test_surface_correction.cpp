@@ -4,16 +4,17 @@
 // are symmetric about the axes. Strain energies are computed with the PMB energy density
 // (thesis Eq. 2.14) under u = eps . x and compared with W = eps : C : eps / 2 of the isotropic
 // material with the bond-based Poisson ratio.
-#include <fmt/core.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
+#include "input/deck_builder.hpp"
 #include "material/pmb.hpp"
 #include "studies/plate_error_profiles.hpp"
 #include "run/static_run.hpp"
-#include "test_helpers.hpp"
+#include "setup/build_model.hpp"
 
 using namespace periadapt;
 
@@ -64,19 +65,21 @@ struct Worst {
 // face normal's plane), plus the centre.
 Worst surface_errors(int dim, const std::string& correction, int cells) {
   const double dx = 1e-3, E = 1e9;
-  std::string box_min = "[0", box_max = fmt::format("[{}", cells * dx);
-  for (int d = 1; d < dim; ++d) {
-    box_max += fmt::format(", {}", cells * dx);
-    box_min.append(", 0");
-  }
-  const std::string yaml = fmt::format(
-      "model: {{dimension: {}{}}}\nmaterial: {{youngs_modulus: 1.0e9, density: 1000}}\n"
-      "discretization: {{spacing: 0.001, horizon_factor: 3.015, registration: node_on_edge, "
-      "quadrature: {}, surface_correction: {}, body: {{box: {{min: {}], max: {}]}}}}}}\n"
-      "damage: {{enabled: false}}\nsolver: {{steps: 1}}\n",
-      dim, dim == 2 ? ", plane: stress" : "", dim == 2 ? "ipa_hybrid" : "subcell", correction,
-      box_min, box_max);
-  Model m = build_model(test::deck_from(yaml));
+  DeckBuilder d;
+  d.set("model.dimension", dim);
+  if (dim == 2) d.set("model.plane", "stress");
+  d.set("material.youngs_modulus", 1.0e9)
+      .set("material.density", 1000.0)
+      .set("discretization.spacing", 0.001)
+      .set("discretization.horizon_factor", 3.015)
+      .set("discretization.registration", "node_on_edge")
+      .set("discretization.quadrature", dim == 2 ? "ipa_hybrid" : "subcell")
+      .set("discretization.surface_correction", correction)
+      .set("discretization.body.box.min", std::vector<double>(dim, 0.0))
+      .set("discretization.body.box.max", std::vector<double>(dim, cells * dx))
+      .set("damage.enabled", false)
+      .set("solver.steps", 1);
+  Model m = build_model(d.build("block"));
   NodeSet& ns = m.nodes;
   const double mid = 0.5 * cells * dx;
   std::vector<std::size_t> probes;

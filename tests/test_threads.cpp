@@ -4,7 +4,10 @@
 #include <omp.h>
 
 #include <cmath>
+#include <string>
+#include <utility>
 
+#include "input/deck_builder.hpp"
 #include "run/simulation.hpp"
 #include "test_helpers.hpp"
 
@@ -13,21 +16,45 @@ using namespace periadapt;
 namespace {
 
 // The crack-branching plate at 1 mm, 10 us: the crack starts, so breaking is exercised.
-std::string branching_plate(const std::string& damage, const std::string& pairing = "source_horizon",
-                            const std::string& solver_extra = "") {
-  return "model: {dimension: 2, plane: stress}\n"
-         "material: {youngs_modulus: 72.0e9, density: 2440, fracture_energy: 135}\n"
-         "discretization: {spacing: 0.001, horizon_factor: 3, body: {box: {min: [0, 0], max: [0.1, 0.04]}}}\n"
-         "cracks: [{segment: [[0, 0.02], [0.05, 0.02]]}]\n"
-         "loads:\n"
-         "  - {type: traction, region: {box: {min: [0, 0.039], max: [0.1, 0.04]}}, value: [0, 22.0e6]}\n"
-         "  - {type: traction, region: {box: {min: [0, 0], max: [0.1, 0.001]}}, value: [0, -22.0e6]}\n"
-         "solver: {time_step: 5.0e-8, end_time: 1.0e-5, bond_pairing: " + pairing + solver_extra + "}\n" +
-         damage;
+DeckBuilder branching_plate(const std::string& pairing = "source_horizon") {
+  const std::vector<std::vector<double>> crack = {{0, 0.02}, {0.05, 0.02}};
+  DeckBuilder d;
+  d.set("model.dimension", 2)
+      .set("model.plane", "stress")
+      .set("material.youngs_modulus", 72.0e9)
+      .set("material.density", 2440.0)
+      .set("material.fracture_energy", 135.0)
+      .set("discretization.spacing", 0.001)
+      .set("discretization.horizon_factor", 3.0)
+      .set("discretization.body.box.min", {0.0, 0.0})
+      .set("discretization.body.box.max", {0.1, 0.04})
+      .append("cracks", DeckBuilder().set("segment", crack))
+      .append("loads", DeckBuilder()
+                           .set("type", "traction")
+                           .set("region", test::box({0.0, 0.039}, {0.1, 0.04}))
+                           .set("value", {0.0, 22.0e6}))
+      .append("loads", DeckBuilder()
+                           .set("type", "traction")
+                           .set("region", test::box({0.0, 0.0}, {0.1, 0.001}))
+                           .set("value", {0.0, -22.0e6}))
+      .set("solver.time_step", 5.0e-8)
+      .set("solver.end_time", 1.0e-5)
+      .set("solver.bond_pairing", pairing);
+  return d;
 }
 
-void expect_same_with_1_and_2_threads(const std::string& yaml) {
-  const Deck dk = test::deck_from(yaml);
+// AGRS from 4 us with both triggers.
+DeckBuilder agrs() {
+  DeckBuilder a;
+  a.set("max_level", 1)
+      .set("start_time", 4.0e-6)
+      .set("energy_trigger", 0.7)
+      .set("damage_trigger", true);
+  return a;
+}
+
+void expect_same_with_1_and_2_threads(const DeckBuilder& deck) {
+  const Deck dk = deck.build("branching plate");
   RunOptions ro;
   ro.write_files = false;
   ro.quiet = true;
@@ -52,14 +79,12 @@ void expect_same_with_1_and_2_threads(const std::string& yaml) {
 }  // namespace
 
 TEST(Threads, ResultsDoNotDependOnThreadCount) {
-  expect_same_with_1_and_2_threads(branching_plate(""));
+  expect_same_with_1_and_2_threads(branching_plate());
 }
 
 TEST(Threads, DualHorizonResultsDoNotDependOnThreadCount) {
   // Adaptive (mixed horizons) with the dual-horizon pairing: reactions gathered in a second pass.
-  expect_same_with_1_and_2_threads(branching_plate(
-      "adapt: {max_level: 1, start_time: 4.0e-6, energy_trigger: 0.7, damage_trigger: true}\n",
-      "dual_horizon"));
+  expect_same_with_1_and_2_threads(branching_plate("dual_horizon").set("adapt", agrs()));
 }
 
 TEST(Threads, AdaptiveResultsDoNotDependOnThreadCount) {
@@ -67,9 +92,7 @@ TEST(Threads, AdaptiveResultsDoNotDependOnThreadCount) {
   // the running crack), with node generation B and A.
   for (const char* method : {"B", "A"}) {
     SCOPED_TRACE(method);
-    expect_same_with_1_and_2_threads(branching_plate(
-        std::string("adapt: {max_level: 1, method: ") + method +
-        ", start_time: 4.0e-6, energy_trigger: 0.7, damage_trigger: true}\n"));
+    expect_same_with_1_and_2_threads(branching_plate().set("adapt", agrs().set("method", method)));
   }
 }
 
@@ -77,18 +100,22 @@ TEST(Threads, MultiRateAdaptiveResultsDoNotDependOnThreadCount) {
   // AGRS with multi-rate stepping: the partial force passes, the idle rows' energy pass, the steps
   // undone in the middle of a slow node's cycle and, with ratio 3 (the coarse nodes on 150 ns),
   // the velocities synchronized around events.
-  for (const char* rates : {", multirate: true", ", multirate: true, multirate_ratio: 3"}) {
-    SCOPED_TRACE(rates);
-    expect_same_with_1_and_2_threads(branching_plate(
-        "adapt: {max_level: 1, start_time: 4.0e-6, energy_trigger: 0.7, damage_trigger: true}\n",
-        "source_horizon", rates));
+  for (const bool ratio_3 : {false, true}) {
+    SCOPED_TRACE(ratio_3 ? "multirate: true, multirate_ratio: 3" : "multirate: true");
+    DeckBuilder d = branching_plate();
+    d.set("adapt", agrs()).set("solver.multirate", true);
+    if (ratio_3) d.set("solver.multirate_ratio", 3);
+    expect_same_with_1_and_2_threads(d);
   }
 }
 
 TEST(Threads, OverlayResultsDoNotDependOnThreadCount) {
-  for (const char* variant : {"interpolation: pddo", "interpolation: pim", "sampling: whole_bond"}) {
-    SCOPED_TRACE(variant);
-    expect_same_with_1_and_2_threads(
-        branching_plate(std::string("damage: {overlay: {n: 2, ") + variant + "}}\n"));
+  const std::pair<const char*, const char*> variants[] = {
+      {"interpolation", "pddo"}, {"interpolation", "pim"}, {"sampling", "whole_bond"}};
+  for (const auto& [key, value] : variants) {
+    SCOPED_TRACE(std::string(key) + ": " + value);
+    expect_same_with_1_and_2_threads(branching_plate()
+                                         .set("damage.overlay.n", 2)
+                                         .set(std::string("damage.overlay.") + key, value));
   }
 }
