@@ -3,7 +3,8 @@
 set -euo pipefail
 pkgs=(build-essential cmake pkg-config libyaml-cpp-dev libcli11-dev libfmt-dev nlohmann-json3-dev
       libmuparser-dev libcairo2-dev libpng-dev libeigen3-dev libgtest-dev libbenchmark-dev python3
-      python3-meshio zlib1g-dev libcgal-dev libgmsh-dev)
+      python3-meshio zlib1g-dev libcgal-dev libgmsh-dev libopenmpi-dev openmpi-bin
+      libtrilinos-zoltan-dev)
 missing=()
 for p in "${pkgs[@]}"; do dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "ok installed" || missing+=("$p"); done
 if ((${#missing[@]})); then

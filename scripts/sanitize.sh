@@ -15,4 +15,4 @@ export LSAN_OPTIONS="suppressions=$PWD/scripts/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 export PERIADAPT_SANITIZE=1  # tests that cap the address space skip the cap (ASan reserves terabytes)
 ctest --test-dir build-asan --output-on-failure -j"$(nproc)" --timeout 900 \
-  -E "validation_(grid_orientation|pdro_sent|sent_levels|kalthoff_winkler|beam_3pb_lps|density_jump)|Adapt.LatticeCalibrationRemoves"
+  -E "validation_(grid_orientation|pdro_sent|sent_levels|kalthoff_winkler|beam_3pb_lps|density_jump)|Adapt.LatticeCalibrationRemoves|cli_mpi"

@@ -6,9 +6,12 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <optional>
 #include <iostream>
 
 #include <fmt/format.h>
+
+#include "parallel/mpi_env.hpp"
 
 #include "run/simulation.hpp"
 #include "run/sweep.hpp"
@@ -189,8 +192,16 @@ int check(const std::string& path, const std::vector<std::string>& overrides,
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Under mpirun every rank runs the same run on the same data (parallel/row_partition.hpp);
+  // rank 0 alone prints and writes files.
+  const mpi::Session mpi_session(argc, argv);
+  if (mpi::rank() > 0) {
+    if (!std::freopen("/dev/null", "w", stdout) || !std::freopen("/dev/null", "w", stderr))
+      return 1;
+  }
   CLI::App app{"PeriAdapt: peridynamics with adaptive grid refinement and scaling"};
-  app.set_version_flag("--version", std::string("periadapt ") + PERIADAPT_VERSION);
+  app.set_version_flag("--version", std::string("periadapt ") + PERIADAPT_VERSION +
+                                        (mpi::built_with_mpi() ? " (MPI: yes)" : " (MPI: no)"));
   app.require_subcommand(1);
   std::string deck, out;
   int threads = 0;
@@ -268,6 +279,10 @@ int main(int argc, char** argv) {
   }
   if (threads > 0) omp_set_num_threads(threads);
   std::string run_dir;
+  if (mpi::distributed() && !run->parsed()) {
+    if (mpi::rank() > 0) return 0;
+    fmt::print(stderr, "note: only `run` is distributed; rank 0 does this alone\n");
+  }
   try {
     if (chk->parsed()) return check(deck, overrides, nodes_csv);
     if (sweep->parsed()) {
@@ -281,15 +296,21 @@ int main(int argc, char** argv) {
     }
     RunOptions ro;
     if (!out.empty()) ro.out_dir = out;
-    ro.quiet = quiet;
+    ro.quiet = quiet || mpi::rank() > 0;
+    ro.write_files = mpi::rank() == 0;
     if (!restart_from.empty()) ro.restart = restart_from;
     const Deck dk = load_deck(deck, overrides);
     // One run per output folder at a time; the lock goes with the process.
     run_dir = ro.out_dir ? *ro.out_dir : dk.output.directory;
-    std::error_code ec;
-    std::filesystem::create_directories(run_dir, ec);
-    if (ec) throw OutputError("cannot create the output folder " + run_dir + ": " + ec.message());
-    const OutputFolderLock lock(run_dir);
+    std::optional<OutputFolderLock> lock;
+    if (ro.write_files) {
+      std::error_code ec;
+      std::filesystem::create_directories(run_dir, ec);
+      if (ec) throw OutputError("cannot create the output folder " + run_dir + ": " + ec.message());
+      lock.emplace(run_dir);
+    } else {
+      run_dir.clear();  // no summary written on failure either
+    }
     if (ro.restart && dk.solver != Deck::SolverType::Explicit)
       throw DeckError(deck, 0, 0, "--restart",
                       "restarts are for explicit runs; static and relaxation runs start over");

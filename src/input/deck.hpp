@@ -16,6 +16,7 @@
 #include "discretize/surface_correction.hpp"
 #include "material/micromodulus.hpp"
 #include "model/time_function.hpp"
+#include "parallel/row_partition.hpp"
 
 namespace periadapt {
 
@@ -122,6 +123,7 @@ struct Deck {
   // Refuse decks whose estimated model memory exceeds this (default: the available memory).
   std::optional<double> memory_limit_gb;
   bool dual_horizon = false;  // static solver: bonds act on both ends (dual-horizon form)
+  PartitionMethod partition = PartitionMethod::Rcb;  // distributed runs: Zoltan's method
   std::optional<double> time_step;
   double safety = 0.8;
   bool allow_unstable_time_step = false;

@@ -81,6 +81,9 @@ void parse_solver(Section& top, Deck& dk) {
     if (dk.multirate && dk.dual_horizon)
       s.fail("multirate", "multi-rate stepping needs bond_pairing: source_horizon (dual-horizon "
                           "forces act on both ends of a bond)");
+    // How mpirun runs split the rows (parallel/row_partition.hpp).
+    dk.partition = s.choice("partition", {"rcb", "hsfc"}, "rcb") == "rcb" ? PartitionMethod::Rcb
+                                                                          : PartitionMethod::Hsfc;
     s.finish();
   }
   if (auto c = top.optional_section("contact")) {

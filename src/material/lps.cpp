@@ -91,9 +91,11 @@ void dilatation(const NodeSet& ns, const BondFamilies& bf, const LpsConstants& c
 // B: several materials: stretches compared as s * isf by the far end's block.
 template <int D, InfluenceShape S, bool E, bool B>
 std::size_t forces(NodeSet& ns, BondFamilies& bf, const LpsConstants& c, bool allow_breaking,
-                   LpsScratch& sc, std::vector<std::uint64_t>* log, double* W, const PdroSpec* pdro) {
+                   LpsScratch& sc, std::vector<std::uint64_t>* log, double* W, const PdroSpec* pdro,
+                   const std::vector<std::uint32_t>* rows) {
   dilatation<D, S, true>(ns, bf, c, sc);
-  const std::size_t n = ns.size();
+  const std::size_t n = rows ? rows->size() : ns.size();
+  const std::uint32_t* row = rows ? rows->data() : nullptr;
   const double* yp = ns.cur.data();
   const double* pk = sc.packed.data();
   const double* reach = sc.reach.data();
@@ -104,7 +106,8 @@ std::size_t forces(NodeSet& ns, BondFamilies& bf, const LpsConstants& c, bool al
   const std::size_t nblocks = sc.block_constants.size();
   std::size_t broken_total = 0;
 #pragma omp parallel for schedule(dynamic, 512) reduction(+ : broken_total)
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t r = 0; r < n; ++r) {
+    const std::size_t i = row ? row[r] : r;
     if (!(ns.flags[i] & kActive)) continue;
     const double Ai = pk[4 * i], Bi = pk[4 * i + 1], Ci = pk[4 * i + 2], idi = pk[4 * i + 3];
     const double yi0 = yp[4 * i], yi1 = D > 1 ? yp[4 * i + 1] : 0.0, yi2 = D > 2 ? yp[4 * i + 2] : 0.0;
@@ -193,41 +196,43 @@ std::size_t forces(NodeSet& ns, BondFamilies& bf, const LpsConstants& c, bool al
 template <int D, bool E, bool B>
 std::size_t forces_shape(InfluenceShape s, NodeSet& ns, BondFamilies& bf, const LpsConstants& c,
                          bool brk, LpsScratch& sc, std::vector<std::uint64_t>* log, double* W,
-                         const PdroSpec* pdro) {
+                         const PdroSpec* pdro, const std::vector<std::uint32_t>* rows) {
   switch (s) {
     case InfluenceShape::Constant:
-      return forces<D, InfluenceShape::Constant, E, B>(ns, bf, c, brk, sc, log, W, pdro);
+      return forces<D, InfluenceShape::Constant, E, B>(ns, bf, c, brk, sc, log, W, pdro, rows);
     case InfluenceShape::Triangular:
-      return forces<D, InfluenceShape::Triangular, E, B>(ns, bf, c, brk, sc, log, W, pdro);
+      return forces<D, InfluenceShape::Triangular, E, B>(ns, bf, c, brk, sc, log, W, pdro, rows);
     default:
-      return forces<D, InfluenceShape::InvertedTriangular, E, B>(ns, bf, c, brk, sc, log, W, pdro);
+      return forces<D, InfluenceShape::InvertedTriangular, E, B>(ns, bf, c, brk, sc, log, W, pdro,
+                                                                 rows);
   }
 }
 
 template <bool E>
 std::size_t forces_dim(InfluenceShape s, NodeSet& ns, BondFamilies& bf, const LpsConstants& c,
                        bool brk, LpsScratch& sc, std::vector<std::uint64_t>* log, double* W,
-                       const PdroSpec* pdro) {
+                       const PdroSpec* pdro, const std::vector<std::uint32_t>* rows) {
   if (!sc.block_constants.empty())
-    return ns.dim == 3 ? forces_shape<3, E, true>(s, ns, bf, c, brk, sc, log, W, pdro)
-                       : forces_shape<2, E, true>(s, ns, bf, c, brk, sc, log, W, pdro);
-  return ns.dim == 3 ? forces_shape<3, E, false>(s, ns, bf, c, brk, sc, log, W, pdro)
-                     : forces_shape<2, E, false>(s, ns, bf, c, brk, sc, log, W, pdro);
+    return ns.dim == 3 ? forces_shape<3, E, true>(s, ns, bf, c, brk, sc, log, W, pdro, rows)
+                       : forces_shape<2, E, true>(s, ns, bf, c, brk, sc, log, W, pdro, rows);
+  return ns.dim == 3 ? forces_shape<3, E, false>(s, ns, bf, c, brk, sc, log, W, pdro, rows)
+                     : forces_shape<2, E, false>(s, ns, bf, c, brk, sc, log, W, pdro, rows);
 }
 
 }  // namespace
 
 std::size_t lps_forces(NodeSet& ns, BondFamilies& bf, InfluenceShape shape, const LpsConstants& c,
                        bool allow_breaking, LpsScratch& sc, std::vector<std::uint64_t>* log,
-                       std::vector<double>* Wout, const PdroSpec* pdro) {
+                       std::vector<double>* Wout, const PdroSpec* pdro,
+                       const std::vector<std::uint32_t>* rows) {
   if (pdro && !pdro->enabled) pdro = nullptr;
   if (pdro && allow_breaking && pdro->interpolation == PdroInterpolation::Pim)
     pdro->visible_beta->assign(bf.beta.begin(), bf.beta.end());
   if (Wout) {
     Wout->assign(ns.size(), 0.0);
-    return forces_dim<true>(shape, ns, bf, c, allow_breaking, sc, log, Wout->data(), pdro);
+    return forces_dim<true>(shape, ns, bf, c, allow_breaking, sc, log, Wout->data(), pdro, rows);
   }
-  return forces_dim<false>(shape, ns, bf, c, allow_breaking, sc, log, nullptr, pdro);
+  return forces_dim<false>(shape, ns, bf, c, allow_breaking, sc, log, nullptr, pdro, rows);
 }
 
 namespace {

@@ -64,11 +64,13 @@ inline const LpsConstants& node_constants(const LpsConstants& c, const LpsScratc
 }
 
 // Force densities (and bond breaking, broken-bond log, energy density, refinement overlay as
-// for PMB).
+// for PMB). `rows`: the forces (and W) of these nodes only, from every node's dilatation (W of
+// the others is 0).
 std::size_t lps_forces(NodeSet& nodes, BondFamilies& bonds, InfluenceShape shape,
                        const LpsConstants& c, bool allow_breaking, LpsScratch& scratch,
                        std::vector<std::uint64_t>* broken_log, std::vector<double>* W,
-                       const PdroSpec* pdro = nullptr);
+                       const PdroSpec* pdro = nullptr,
+                       const std::vector<std::uint32_t>* rows = nullptr);
 
 // Weighted volume and dilatation of every active node into `scratch` (the first pass).
 // `mutual_only`: over the mutual bonds, as the plain kernel's states (above); false: over whole

@@ -23,6 +23,7 @@
 #include "material/blocks.hpp"
 #include "material/micromodulus.hpp"
 #include "overlay/pdro.hpp"
+#include "parallel/row_partition.hpp"
 #include "model/time_function.hpp"
 
 namespace periadapt {
@@ -53,6 +54,8 @@ struct Model {
   // nodes.block[i].
   std::vector<MaterialLaw> block_materials;
   BlockPairs block_pairs;
+  // Distributed runs: which rows this rank computes (parallel/row_partition.hpp).
+  RowPartition partition;
   bool damage_enabled = true;
   std::vector<BodyLoad> loads;
   std::vector<PrescribedMotion> motions;

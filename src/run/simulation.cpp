@@ -14,6 +14,7 @@
 #include "core/binary_archive.hpp"
 #include "input/deck_error.hpp"
 #include "model/model_state.hpp"
+#include "parallel/mpi_env.hpp"
 #include "run/checkpoint_file.hpp"
 #include "run/crack_tip_observer.hpp"
 #include "run/history_observer.hpp"
@@ -99,6 +100,22 @@ TimeStepChoice choose_time_step(const Deck& dk, const Model& m) {
 }
 
 
+// mpirun: the force passes split over the ranks; what they cannot split yet is refused.
+void enable_distributed_forces(const Deck& dk, Model& m) {
+  const auto refuse = [&](const std::string& key, const std::string& why) {
+    throw DeckError(dk.file, 0, 0, key,
+                    why + "; distributed runs (mpirun) take pmb or lps with "
+                          "bond_pairing: source_horizon; run it on one rank");
+  };
+  if (m.formulation.keeps_bond_history())
+    refuse("model.formulation", "formulation " + dk.formulation + " keeps a history per bond");
+  if (m.formulation.dual_horizon) refuse("solver.bond_pairing", "the dual-horizon pairing");
+  if (m.pdro.enabled) refuse("damage.overlay", "the refinement overlay");
+  if (!m.impactors.empty()) refuse("impactors", "rigid impactors");
+  m.partition.active = true;
+  m.partition.method = dk.partition;
+}
+
 RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
   using clock = std::chrono::steady_clock;
   const auto t_start = clock::now();
@@ -108,6 +125,7 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
   const double t_setup = std::chrono::duration<double>(clock::now() - t_start).count();
   const TimeStepChoice ts = choose_time_step(dk, m);
   const NodeSet& ns = m.nodes;
+  if (mpi::distributed()) enable_distributed_forces(dk, m);
 
   const std::string dir = opt.out_dir ? *opt.out_dir : dk.output.directory;
   if (opt.write_files) std::filesystem::create_directories(dir);
@@ -251,7 +269,8 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
       res.diverged = true;
       break;
     }
-    res.interrupted = interrupt_signal();
+    // A signal reaches the ranks at different moments: all stop at the first step any saw it.
+    res.interrupted = static_cast<int>(mpi::max(interrupt_signal()));
     observe(s, false);
     if (opt.write_files && (res.interrupted || (dk.output.checkpoint_every > 0 &&
                                                 s % dk.output.checkpoint_every == 0 && s < ts.steps)))

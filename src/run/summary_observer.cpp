@@ -1,3 +1,4 @@
+#include "parallel/mpi_env.hpp"
 #include "run/summary_observer.hpp"
 
 #include <omp.h>
@@ -62,6 +63,11 @@ void SummaryObserver::finish(RunView& view, RunResult& res) {
   j["dt_stable"] = tot.dt_stable;
   j["end_time_s"] = vv.time();
   j["threads"] = omp_get_max_threads();
+  if (m.partition.active)
+    j["ranks"] = {{"count", mpi::size()},
+                  {"partition", m.partition.method == PartitionMethod::Rcb ? "rcb" : "hsfc"},
+                  {"partitions_made", m.partition.partitions},
+                  {"bond_imbalance", m.partition.imbalance}};
   j["setup_time_s"] = tot.setup_s;
   j["solver_time_s"] = tot.solver_s;
   // Inside the run loop, besides the solver: sampling the history (energies, damage, crack tip)

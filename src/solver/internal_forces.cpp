@@ -5,6 +5,8 @@
 #include "material/lps_dual.hpp"
 #include "material/pmb.hpp"
 #include "material/pmb_dual.hpp"
+#include "parallel/mpi_env.hpp"
+#include "parallel/row_partition.hpp"
 
 namespace periadapt {
 
@@ -55,10 +57,34 @@ std::size_t material_forces(Model& m, bool allow_breaking, std::vector<std::uint
   return row_local_forces(m, allow_breaking, log, W, nullptr);
 }
 
+// A distributed run's pass (parallel/row_partition.hpp): this rank's share of `rows` (all rows
+// when null), then the owners share their results. PMB and LPS in the source-horizon pairing.
+std::size_t distributed_forces(Model& m, bool allow_breaking, const std::vector<std::uint32_t>* rows,
+                               std::vector<std::uint64_t>* log, std::vector<double>* W) {
+  refresh_partition(m.partition, m.nodes, m.bonds);
+  const std::vector<std::uint32_t> mine = owned_rows(m.partition, rows);
+  std::vector<std::uint64_t> broken_here;
+  // Energy densities when any rank asks (rank 0's observers ask where the others write nothing):
+  // every owner must compute its rows' share.
+  std::vector<double> w_scratch;
+  const bool any_w = mpi::max(W != nullptr) > 0;  // collective: every rank calls it
+  if (any_w && !W) W = &w_scratch;
+  std::vector<double>* stretch = m.track_breakable_stretch ? &m.breakable_stretch : nullptr;
+  if (m.formulation.kind == Kind::Lps)
+    lps_forces(m.nodes, m.bonds, m.material.shape, m.material.lps_constants, allow_breaking,
+               m.lps_scratch, &broken_here, W, &m.pdro, &mine);
+  else
+    pmb_forces(m.nodes, m.bonds, m.material.shape, allow_breaking, &broken_here, W, &m.pdro,
+               m.material.thermal_strain, &mine, stretch, &m.block_pairs);
+  if (m.contact.enabled) add_contact_forces(m.contact, m.nodes, &mine, W);
+  return share_force_pass(m.nodes, m.bonds, mine, broken_here, log, W, stretch);
+}
+
 }  // namespace
 
 std::size_t internal_forces(Model& m, bool allow_breaking, std::vector<std::uint64_t>* log,
                             std::vector<double>* W) {
+  if (m.partition.active) return distributed_forces(m, allow_breaking, nullptr, log, W);
   const std::size_t broken = material_forces(m, allow_breaking, log, W);
   if (m.contact.enabled) add_contact_forces(m.contact, m.nodes, nullptr, W);
   if (!m.impactors.empty()) add_impactor_forces(m.impactors, m.nodes, nullptr, W);
@@ -67,6 +93,7 @@ std::size_t internal_forces(Model& m, bool allow_breaking, std::vector<std::uint
 
 std::size_t internal_forces_rows(Model& m, bool allow_breaking, const std::vector<std::uint32_t>& rows,
                                  std::vector<std::uint64_t>* log, std::vector<double>* W) {
+  if (m.partition.active) return distributed_forces(m, allow_breaking, &rows, log, W);
   const std::size_t broken = row_local_forces(m, allow_breaking, log, W, &rows);
   if (m.contact.enabled) add_contact_forces(m.contact, m.nodes, &rows, W);
   if (!m.impactors.empty()) add_impactor_forces(m.impactors, m.nodes, &rows, W);

@@ -1,0 +1,110 @@
+#include "parallel/mpi_env.hpp"
+
+#include <cstdlib>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+
+#ifdef PERIADAPT_HAVE_MPI
+#include <mpi.h>
+#include <zoltan.h>
+#endif
+
+namespace periadapt::mpi {
+
+namespace {
+bool g_active = false;  // MPI initialized by Session, more than one rank
+int g_rank = 0, g_size = 1;
+
+#ifdef PERIADAPT_HAVE_MPI
+// Started by mpirun (Open MPI or MPICH/Hydra set these): a singleton run never initializes MPI,
+// so serial runs, tests and sanitizer builds stay free of it.
+bool launched_by_mpirun() {
+  for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"})
+    if (const char* s = std::getenv(v)) return std::atoi(s) > 1;
+  return false;
+}
+
+template <class T>
+MPI_Datatype type_of();
+template <>
+MPI_Datatype type_of<double>() { return MPI_DOUBLE; }
+template <>
+MPI_Datatype type_of<std::uint32_t>() { return MPI_UINT32_T; }
+template <>
+MPI_Datatype type_of<std::uint64_t>() { return MPI_UINT64_T; }
+template <>
+MPI_Datatype type_of<int>() { return MPI_INT; }
+#endif
+}  // namespace
+
+Session::Session(int& argc, char**& argv) {
+#ifdef PERIADAPT_HAVE_MPI
+  if (!launched_by_mpirun()) return;
+  int provided = 0;
+  // Only the main thread calls MPI (OpenMP threads run the kernels between the calls).
+  MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
+  MPI_Comm_rank(MPI_COMM_WORLD, &g_rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &g_size);
+  float version = 0;
+  if (Zoltan_Initialize(argc, argv, &version) != ZOLTAN_OK)
+    throw std::runtime_error("Zoltan_Initialize failed");
+  g_active = g_size > 1;
+#else
+  (void)argc;
+  (void)argv;
+#endif
+}
+
+Session::~Session() {
+#ifdef PERIADAPT_HAVE_MPI
+  int init = 0, fin = 0;
+  MPI_Initialized(&init);
+  MPI_Finalized(&fin);
+  if (init && !fin) MPI_Finalize();
+#endif
+}
+
+bool built_with_mpi() {
+#ifdef PERIADAPT_HAVE_MPI
+  return true;
+#else
+  return false;
+#endif
+}
+
+int rank() { return g_rank; }
+int size() { return g_active ? g_size : 1; }
+
+long max(long v) {
+#ifdef PERIADAPT_HAVE_MPI
+  if (g_active) MPI_Allreduce(MPI_IN_PLACE, &v, 1, MPI_LONG, MPI_MAX, MPI_COMM_WORLD);
+#endif
+  return v;
+}
+
+template <class T>
+std::vector<T> all_gather(const std::vector<T>& mine, std::vector<int>* counts) {
+#ifdef PERIADAPT_HAVE_MPI
+  if (g_active) {
+    std::vector<int> n(static_cast<std::size_t>(g_size)), at(static_cast<std::size_t>(g_size));
+    int own = static_cast<int>(mine.size());
+    MPI_Allgather(&own, 1, MPI_INT, n.data(), 1, MPI_INT, MPI_COMM_WORLD);
+    std::exclusive_scan(n.begin(), n.end(), at.begin(), 0);
+    std::vector<T> all(static_cast<std::size_t>(at.back() + n.back()));
+    MPI_Allgatherv(mine.data(), own, type_of<T>(), all.data(), n.data(), at.data(), type_of<T>(),
+                   MPI_COMM_WORLD);
+    if (counts) *counts = std::move(n);
+    return all;
+  }
+#endif
+  if (counts) *counts = {static_cast<int>(mine.size())};
+  return mine;
+}
+
+template std::vector<double> all_gather(const std::vector<double>&, std::vector<int>*);
+template std::vector<std::uint32_t> all_gather(const std::vector<std::uint32_t>&, std::vector<int>*);
+template std::vector<std::uint64_t> all_gather(const std::vector<std::uint64_t>&, std::vector<int>*);
+template std::vector<int> all_gather(const std::vector<int>&, std::vector<int>*);
+
+}  // namespace periadapt::mpi

@@ -1,0 +1,31 @@
+#pragma once
+// The MPI world of a run: rank, size and the few collectives the distributed force pass and the
+// run loop need. A build without MPI, and a process not started by mpirun, is one rank: every
+// call below is then a no-op that returns its input.
+#include <cstdint>
+#include <vector>
+
+namespace periadapt::mpi {
+
+// Initializes MPI (and Zoltan) when this process was started by mpirun with more than one
+// rank; finalizes at exit. One per process, in main.
+class Session {
+ public:
+  Session(int& argc, char**& argv);
+  ~Session();
+  Session(const Session&) = delete;
+  Session& operator=(const Session&) = delete;
+};
+
+bool built_with_mpi();
+int rank();
+int size();
+inline bool distributed() { return size() > 1; }
+
+// Largest value over the ranks.
+long max(long v);
+// Each rank's `mine` concatenated in rank order, and (counts) how many each gave.
+template <class T>
+std::vector<T> all_gather(const std::vector<T>& mine, std::vector<int>* counts = nullptr);
+
+}  // namespace periadapt::mpi

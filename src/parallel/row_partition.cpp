@@ -1,0 +1,181 @@
+#include "parallel/row_partition.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <stdexcept>
+
+#include "parallel/mpi_env.hpp"
+
+#ifdef PERIADAPT_HAVE_MPI
+#include <mpi.h>
+#include <zoltan.h>
+#endif
+
+namespace periadapt {
+
+namespace {
+
+#ifdef PERIADAPT_HAVE_MPI
+// What Zoltan's callbacks read: the nodes this rank hands in (a contiguous id range; every rank
+// holds all nodes, so any disjoint split of the ids works as the starting distribution).
+struct ZoltanInput {
+  const NodeSet* ns;
+  const BondFamilies* bf;
+  std::uint32_t first, count;
+};
+
+int num_obj(void* data, int* ierr) {
+  *ierr = ZOLTAN_OK;
+  return static_cast<int>(static_cast<ZoltanInput*>(data)->count);
+}
+
+void obj_list(void* data, int, int, ZOLTAN_ID_PTR gids, ZOLTAN_ID_PTR lids, int wdim, float* w,
+              int* ierr) {
+  const auto& in = *static_cast<ZoltanInput*>(data);
+  for (std::uint32_t k = 0; k < in.count; ++k) {
+    const std::uint32_t i = in.first + k;
+    gids[k] = i;
+    lids[k] = k;
+    // Work per row: its bonds (an inactive row costs a flag test).
+    if (wdim == 1)
+      w[k] = (in.ns->flags[i] & kActive) ? static_cast<float>(in.bf->end(i) - in.bf->begin(i)) + 1.0f
+                                         : 0.01f;
+  }
+  *ierr = ZOLTAN_OK;
+}
+
+int num_geom(void* data, int* ierr) {
+  *ierr = ZOLTAN_OK;
+  return static_cast<ZoltanInput*>(data)->ns->dim;
+}
+
+void geom_multi(void* data, int, int, int n, ZOLTAN_ID_PTR gids, ZOLTAN_ID_PTR, int dim,
+                double* xyz, int* ierr) {
+  const auto& in = *static_cast<ZoltanInput*>(data);
+  for (int k = 0; k < n; ++k)
+    for (int d = 0; d < dim; ++d) xyz[k * dim + d] = in.ns->x[static_cast<std::size_t>(d)][gids[k]];
+  *ierr = ZOLTAN_OK;
+}
+
+// The rank of every node.
+std::vector<int> zoltan_owners(const NodeSet& ns, const BondFamilies& bf, PartitionMethod method) {
+  const std::size_t n = ns.size();
+  const int P = mpi::size(), r = mpi::rank();
+  const std::size_t lo = n * static_cast<std::size_t>(r) / static_cast<std::size_t>(P);
+  const std::size_t hi = n * static_cast<std::size_t>(r + 1) / static_cast<std::size_t>(P);
+  ZoltanInput in{&ns, &bf, static_cast<std::uint32_t>(lo), static_cast<std::uint32_t>(hi - lo)};
+  Zoltan_Struct* zz = Zoltan_Create(MPI_COMM_WORLD);
+  Zoltan_Set_Param(zz, "DEBUG_LEVEL", "0");
+  Zoltan_Set_Param(zz, "LB_METHOD", method == PartitionMethod::Rcb ? "RCB" : "HSFC");
+  Zoltan_Set_Param(zz, "NUM_GID_ENTRIES", "1");
+  Zoltan_Set_Param(zz, "NUM_LID_ENTRIES", "1");
+  Zoltan_Set_Param(zz, "OBJ_WEIGHT_DIM", "1");
+  Zoltan_Set_Param(zz, "RETURN_LISTS", "EXPORT");
+  Zoltan_Set_Param(zz, "IMBALANCE_TOL", "1.02");
+  Zoltan_Set_Num_Obj_Fn(zz, num_obj, &in);
+  Zoltan_Set_Obj_List_Fn(zz, obj_list, &in);
+  Zoltan_Set_Num_Geom_Fn(zz, num_geom, &in);
+  Zoltan_Set_Geom_Multi_Fn(zz, geom_multi, &in);
+  int changes = 0, ngid = 0, nlid = 0, nimp = 0, nexp = 0;
+  ZOLTAN_ID_PTR imp_g = nullptr, imp_l = nullptr, exp_g = nullptr, exp_l = nullptr;
+  int *imp_p = nullptr, *imp_to = nullptr, *exp_p = nullptr, *exp_to = nullptr;
+  const int rc = Zoltan_LB_Partition(zz, &changes, &ngid, &nlid, &nimp, &imp_g, &imp_l, &imp_p,
+                                     &imp_to, &nexp, &exp_g, &exp_l, &exp_p, &exp_to);
+  if (rc != ZOLTAN_OK) {
+    Zoltan_Destroy(&zz);
+    throw std::runtime_error("Zoltan could not partition the nodes (error " + std::to_string(rc) + ")");
+  }
+  // Objects not exported stay on this rank.
+  std::vector<int> local(hi - lo, r);
+  for (int k = 0; k < nexp; ++k) local[exp_l[k]] = exp_p[k];
+  Zoltan_LB_Free_Part(&imp_g, &imp_l, &imp_p, &imp_to);
+  Zoltan_LB_Free_Part(&exp_g, &exp_l, &exp_p, &exp_to);
+  Zoltan_Destroy(&zz);
+  return mpi::all_gather(local);  // in id order: the ranges are contiguous and in rank order
+}
+#endif
+
+}  // namespace
+
+void refresh_partition(RowPartition& p, const NodeSet& ns, const BondFamilies& bf) {
+  if (!p.active || p.nodes == ns.size()) return;
+#ifdef PERIADAPT_HAVE_MPI
+  const std::vector<int> owner = zoltan_owners(ns, bf, p.method);
+  const int me = mpi::rank();
+  p.owned.clear();
+  p.mine.assign(ns.size(), 0);
+  std::vector<double> bonds(static_cast<std::size_t>(mpi::size()), 0.0);
+  for (std::size_t i = 0; i < ns.size(); ++i) {
+    if (ns.flags[i] & kActive)
+      bonds[static_cast<std::size_t>(owner[i])] += static_cast<double>(bf.end(i) - bf.begin(i));
+    if (owner[i] != me) continue;
+    p.owned.push_back(static_cast<std::uint32_t>(i));
+    p.mine[i] = 1;
+  }
+  const double mean = std::accumulate(bonds.begin(), bonds.end(), 0.0) / static_cast<double>(bonds.size());
+  p.imbalance = mean > 0 ? *std::max_element(bonds.begin(), bonds.end()) / mean : 1.0;
+  p.nodes = ns.size();
+  ++p.partitions;
+#else
+  (void)bf;
+  throw std::logic_error("a distributed partition needs a build with MPI");
+#endif
+}
+
+std::vector<std::uint32_t> owned_rows(const RowPartition& p, const std::vector<std::uint32_t>* rows) {
+  if (!rows) return p.owned;
+  std::vector<std::uint32_t> out;
+  for (std::uint32_t i : *rows)
+    if (i < p.mine.size() && p.mine[i]) out.push_back(i);
+  return out;
+}
+
+std::size_t share_force_pass(NodeSet& ns, BondFamilies& bf, const std::vector<std::uint32_t>& rows,
+                             const std::vector<std::uint64_t>& broken_here,
+                             std::vector<std::uint64_t>* log, std::vector<double>* W,
+                             std::vector<double>* stretch) {
+  // Which optional fields travel: agreed by all, so that every rank packs the same layout.
+  const bool with_w = mpi::max(W != nullptr) > 0;
+  const bool with_s = mpi::max(stretch != nullptr) > 0;
+  std::vector<double> w_scratch, s_scratch;
+  if (with_w && !W) W = &w_scratch;
+  if (with_s && !stretch) stretch = &s_scratch;
+  const std::size_t n = ns.size();
+  if (with_w) W->resize(n, 0.0);
+  if (with_s) stretch->resize(n, -INFINITY);
+  const int D = ns.dim;
+  const std::size_t per_row = static_cast<std::size_t>(D) + 1 + with_w + with_s;
+  std::vector<double> values;
+  values.reserve(rows.size() * per_row);
+  for (std::uint32_t i : rows) {
+    for (int d = 0; d < D; ++d) values.push_back(ns.f[static_cast<std::size_t>(d)][i]);
+    values.push_back(ns.broken_weight[i]);
+    if (with_w) values.push_back((*W)[i]);
+    if (with_s) values.push_back((*stretch)[i]);
+  }
+  const std::vector<std::uint32_t> all_rows = mpi::all_gather(rows);
+  const std::vector<double> all_values = mpi::all_gather(values);
+  for (std::size_t k = 0; k < all_rows.size(); ++k) {
+    const std::uint32_t i = all_rows[k];
+    const double* v = &all_values[k * per_row];
+    for (int d = 0; d < D; ++d) ns.f[static_cast<std::size_t>(d)][i] = v[d];
+    ns.broken_weight[i] = v[D];
+    if (with_w) (*W)[i] = v[D + 1];
+    if (with_s) (*stretch)[i] = v[D + 1 + with_w];
+  }
+  std::vector<int> counts;
+  const std::vector<std::uint64_t> broken = mpi::all_gather(broken_here, &counts);
+  // The others' bonds: rows this rank did not compute, still intact in its copy.
+  std::size_t at = 0;
+  for (int r = 0; r < static_cast<int>(counts.size()); ++r) {
+    const std::size_t end = at + static_cast<std::size_t>(counts[static_cast<std::size_t>(r)]);
+    if (r != mpi::rank())
+      for (std::size_t k = at; k < end; ++k) bf.beta[broken[k]] = -bf.beta[broken[k]];
+    at = end;
+  }
+  if (log) log->insert(log->end(), broken.begin(), broken.end());
+  return broken.size();
+}
+
+}  // namespace periadapt

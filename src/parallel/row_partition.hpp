@@ -1,0 +1,48 @@
+#pragma once
+// Distributed runs (mpirun -np N): every rank holds the whole model, and each bond row's forces
+// are computed on one rank only, its owner; the owners then share what they computed (forces,
+// broken bonds, broken weights, energy densities when asked), so that every rank ends each force
+// pass in the state a serial pass gives, bit for bit. The rows are split by Zoltan's recursive
+// coordinate bisection or Hilbert space-filling curve over the node positions, weighted by each
+// row's bond count, and split again when refinement adds nodes. Everything but the force pass
+// (integration, refinement events, observers) runs on every rank alike on the same data; rank 0
+// writes the files.
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/bond_families.hpp"
+#include "core/node_set.hpp"
+
+namespace periadapt {
+
+enum class PartitionMethod { Rcb, Hsfc };
+
+struct RowPartition {
+  bool active = false;
+  PartitionMethod method = PartitionMethod::Rcb;
+  std::vector<std::uint32_t> owned;  // this rank's rows, ascending
+  std::vector<char> mine;            // per node: owned here
+  std::size_t nodes = 0;             // the node count it was made for
+  double imbalance = 1.0;            // largest rank's bonds over the mean
+  long partitions = 0;               // how many times it was (re)made
+};
+
+// Splits the rows when the partition is active and the node count changed since the last split
+// (collective: every rank calls it at the same point).
+void refresh_partition(RowPartition& p, const NodeSet& ns, const BondFamilies& bf);
+
+// This rank's share of `rows` (all rows when null).
+std::vector<std::uint32_t> owned_rows(const RowPartition& p, const std::vector<std::uint32_t>* rows);
+
+// After each rank computed the forces of its `rows`: every rank receives every computed row's
+// force, broken weight and, where any rank asks for them, energy density W and breakable stretch;
+// applies the bonds the other ranks broke (their rows' beta); and appends to `log` every bond
+// broken on any rank. Returns how many broke in all (collective).
+std::size_t share_force_pass(NodeSet& ns, BondFamilies& bf, const std::vector<std::uint32_t>& rows,
+                             const std::vector<std::uint64_t>& broken_here,
+                             std::vector<std::uint64_t>* log, std::vector<double>* W,
+                             std::vector<double>* stretch);
+
+}  // namespace periadapt
