@@ -113,6 +113,10 @@ void refresh_partition(RowPartition& p, const NodeSet& ns, const BondFamilies& b
     p.owned.push_back(static_cast<std::uint32_t>(i));
     p.mine[i] = 1;
   }
+  p.all_owned.clear();
+  for (int r = 0; r < mpi::size(); ++r)
+    for (std::size_t i = 0; i < ns.size(); ++i)
+      if (owner[i] == r) p.all_owned.push_back(static_cast<std::uint32_t>(i));
   const double mean = std::accumulate(bonds.begin(), bonds.end(), 0.0) / static_cast<double>(bonds.size());
   p.imbalance = mean > 0 ? *std::max_element(bonds.begin(), bonds.end()) / mean : 1.0;
   p.nodes = ns.size();
@@ -131,13 +135,15 @@ std::vector<std::uint32_t> owned_rows(const RowPartition& p, const std::vector<s
   return out;
 }
 
-std::size_t share_force_pass(NodeSet& ns, BondFamilies& bf, const std::vector<std::uint32_t>& rows,
+std::size_t share_force_pass(const RowPartition& p, NodeSet& ns, BondFamilies& bf,
+                             const std::vector<std::uint32_t>& rows,
                              const std::vector<std::uint64_t>& broken_here,
                              std::vector<std::uint64_t>* log, std::vector<double>* W,
                              std::vector<double>* stretch) {
   // Which optional fields travel: agreed by all, so that every rank packs the same layout.
   const bool with_w = mpi::max(W != nullptr) > 0;
   const bool with_s = mpi::max(stretch != nullptr) > 0;
+  const bool full = mpi::max(&rows != &p.owned) == 0;
   std::vector<double> w_scratch, s_scratch;
   if (with_w && !W) W = &w_scratch;
   if (with_s && !stretch) stretch = &s_scratch;
@@ -145,34 +151,61 @@ std::size_t share_force_pass(NodeSet& ns, BondFamilies& bf, const std::vector<st
   if (with_w) W->resize(n, 0.0);
   if (with_s) stretch->resize(n, -INFINITY);
   const int D = ns.dim;
-  const std::size_t per_row = static_cast<std::size_t>(D) + 1 + with_w + with_s;
+  const std::size_t per_row = static_cast<std::size_t>(D) + with_w + with_s;
   std::vector<double> values;
   values.reserve(rows.size() * per_row);
   for (std::uint32_t i : rows) {
     for (int d = 0; d < D; ++d) values.push_back(ns.f[static_cast<std::size_t>(d)][i]);
-    values.push_back(ns.broken_weight[i]);
     if (with_w) values.push_back((*W)[i]);
     if (with_s) values.push_back((*stretch)[i]);
   }
-  const std::vector<std::uint32_t> all_rows = mpi::all_gather(rows);
+  const std::vector<std::uint32_t> listed = full ? std::vector<std::uint32_t>{} : mpi::all_gather(rows);
+  const std::vector<std::uint32_t>& all_rows = full ? p.all_owned : listed;
   const std::vector<double> all_values = mpi::all_gather(values);
   for (std::size_t k = 0; k < all_rows.size(); ++k) {
     const std::uint32_t i = all_rows[k];
     const double* v = &all_values[k * per_row];
     for (int d = 0; d < D; ++d) ns.f[static_cast<std::size_t>(d)][i] = v[d];
-    ns.broken_weight[i] = v[D];
-    if (with_w) (*W)[i] = v[D + 1];
-    if (with_s) (*stretch)[i] = v[D + 1 + with_w];
+    if (with_w) (*W)[i] = v[D];
+    if (with_s) (*stretch)[i] = v[D + with_w];
   }
+  // Each broken bond with its row (rows are not stored in id order once events moved some).
+  std::vector<std::uint64_t> sorted_here(broken_here);
+  std::sort(sorted_here.begin(), sorted_here.end());
+  std::vector<std::uint32_t> row_of_here(broken_here.size());
+  if (!sorted_here.empty()) {
+    std::vector<std::uint32_t> row_sorted(sorted_here.size());
+    for (std::uint32_t i : rows) {
+      const auto lo = std::lower_bound(sorted_here.begin(), sorted_here.end(), bf.begin(i));
+      const auto hi = std::lower_bound(lo, sorted_here.end(), bf.end(i));
+      for (auto it = lo; it != hi; ++it) row_sorted[static_cast<std::size_t>(it - sorted_here.begin())] = i;
+    }
+    for (std::size_t q = 0; q < broken_here.size(); ++q)
+      row_of_here[q] = row_sorted[static_cast<std::size_t>(
+          std::lower_bound(sorted_here.begin(), sorted_here.end(), broken_here[q]) - sorted_here.begin())];
+  }
+  // The rows that lost bonds, with their new broken weight as the owner's kernel summed it.
+  std::vector<std::uint32_t> hit(row_of_here);
+  std::sort(hit.begin(), hit.end());
+  hit.erase(std::unique(hit.begin(), hit.end()), hit.end());
+  std::vector<double> hit_weight;
+  for (std::uint32_t i : hit) hit_weight.push_back(ns.broken_weight[i]);
   std::vector<int> counts;
   const std::vector<std::uint64_t> broken = mpi::all_gather(broken_here, &counts);
-  // The others' bonds: rows this rank did not compute, still intact in its copy.
-  std::size_t at = 0;
+  std::vector<int> hit_counts;
+  const std::vector<std::uint32_t> all_hit = mpi::all_gather(hit, &hit_counts);
+  const std::vector<double> all_hit_weight = mpi::all_gather(hit_weight);
+  // The others' bonds, still intact in this rank's copy, and their rows' weights.
+  std::size_t at = 0, hat = 0;
   for (int r = 0; r < static_cast<int>(counts.size()); ++r) {
     const std::size_t end = at + static_cast<std::size_t>(counts[static_cast<std::size_t>(r)]);
-    if (r != mpi::rank())
-      for (std::size_t k = at; k < end; ++k) bf.beta[broken[k]] = -bf.beta[broken[k]];
+    const std::size_t hend = hat + static_cast<std::size_t>(hit_counts[static_cast<std::size_t>(r)]);
+    if (r != mpi::rank()) {
+      for (std::size_t q = at; q < end; ++q) bf.beta[broken[q]] = -bf.beta[broken[q]];
+      for (std::size_t q = hat; q < hend; ++q) ns.broken_weight[all_hit[q]] = all_hit_weight[q];
+    }
     at = end;
+    hat = hend;
   }
   if (log) log->insert(log->end(), broken.begin(), broken.end());
   return broken.size();

@@ -24,6 +24,7 @@ struct RowPartition {
   PartitionMethod method = PartitionMethod::Rcb;
   std::vector<std::uint32_t> owned;  // this rank's rows, ascending
   std::vector<char> mine;            // per node: owned here
+  std::vector<std::uint32_t> all_owned;  // every rank's owned rows, concatenated in rank order
   std::size_t nodes = 0;             // the node count it was made for
   double imbalance = 1.0;            // largest rank's bonds over the mean
   long partitions = 0;               // how many times it was (re)made
@@ -37,10 +38,13 @@ void refresh_partition(RowPartition& p, const NodeSet& ns, const BondFamilies& b
 std::vector<std::uint32_t> owned_rows(const RowPartition& p, const std::vector<std::uint32_t>* rows);
 
 // After each rank computed the forces of its `rows`: every rank receives every computed row's
-// force, broken weight and, where any rank asks for them, energy density W and breakable stretch;
-// applies the bonds the other ranks broke (their rows' beta); and appends to `log` every bond
-// broken on any rank. Returns how many broke in all (collective).
-std::size_t share_force_pass(NodeSet& ns, BondFamilies& bf, const std::vector<std::uint32_t>& rows,
+// force and, where any rank asks for them, energy density W and breakable stretch; applies the
+// bonds the other ranks broke (beta, and the broken weights of their rows as the owners summed
+// them); and
+// appends to `log` every bond broken on any rank. Returns how many broke in all (collective).
+// `rows` == p.owned (a full pass) travels without its ids: every rank knows the partition.
+std::size_t share_force_pass(const RowPartition& p, NodeSet& ns, BondFamilies& bf,
+                             const std::vector<std::uint32_t>& rows,
                              const std::vector<std::uint64_t>& broken_here,
                              std::vector<std::uint64_t>* log, std::vector<double>* W,
                              std::vector<double>* stretch);

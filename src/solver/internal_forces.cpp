@@ -77,7 +77,8 @@ std::size_t distributed_forces(Model& m, bool allow_breaking, const std::vector<
     pmb_forces(m.nodes, m.bonds, m.material.shape, allow_breaking, &broken_here, W, &m.pdro,
                m.material.thermal_strain, &mine, stretch, &m.block_pairs);
   if (m.contact.enabled) add_contact_forces(m.contact, m.nodes, &mine, W);
-  return share_force_pass(m.nodes, m.bonds, mine, broken_here, log, W, stretch);
+  return share_force_pass(m.partition, m.nodes, m.bonds, rows ? mine : m.partition.owned,
+                          broken_here, log, W, stretch);
 }
 
 }  // namespace
