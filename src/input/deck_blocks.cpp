@@ -46,16 +46,10 @@ void parse_blocks(Section& top, Deck& dk) {
         return (v > -1.0 && v < 0.5) ? std::string()
                                      : std::string("must be in (-1, 0.5) for the LPS model");
       });
-    } else if (s.has("poisson_ratio") && std::abs(s.number("poisson_ratio") - nu_bb) > 1e-3) {
-      s.fail("poisson_ratio", "the bond-based PMB model fixes Poisson's ratio of every block to " +
-                                  std::string(nu_bb > 0.3 ? "1/3 (plane stress)"
-                                                          : "1/4 (1D, 3D, plane strain)") +
-                                  "; omit the key or give that value");
+    } else if (s.has("poisson_ratio")) {
+      check_bond_based_poisson(s, nu_bb, "of every block ");
     }
-    if (s.has("fracture_energy") && s.has("critical_stretch"))
-      s.fail("critical_stretch", "give either fracture_energy or critical_stretch, not both");
-    if (s.has("fracture_energy")) bs.G0 = s.number("fracture_energy", std::nullopt, positive());
-    if (s.has("critical_stretch")) bs.s0 = s.number("critical_stretch", std::nullopt, positive());
+    parse_fracture_keys(s, bs.G0, bs.s0);
     if (dk.damage && !bs.G0 && !bs.s0)
       s.fail("", "damage is enabled: give this block's fracture_energy (G0) or critical_stretch "
                  "(a part that must not crack is a damage.no_fail region)");

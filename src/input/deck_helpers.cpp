@@ -229,4 +229,21 @@ bool segment_meets_body(const Box& body, const Vec3& a, const Vec3& b, int dim) 
 
 void set_deck_folder(const std::filesystem::path& folder) { g_deck_folder = folder; }
 
+double check_bond_based_poisson(Section& s, double nu_bb, const std::string& whose) {
+  const double nu = s.number("poisson_ratio");
+  if (std::abs(nu - nu_bb) > 1e-3)
+    s.fail("poisson_ratio", "the bond-based PMB model fixes Poisson's ratio " + whose + "to " +
+                                std::string(nu_bb > 0.3 ? "1/3 (plane stress)"
+                                                        : "1/4 (1D, 3D, plane strain)") +
+                                "; omit the key or give that value");
+  return nu;
+}
+
+void parse_fracture_keys(Section& s, std::optional<double>& G0, std::optional<double>& s0) {
+  if (s.has("fracture_energy") && s.has("critical_stretch"))
+    s.fail("critical_stretch", "give either fracture_energy or critical_stretch, not both");
+  if (s.has("fracture_energy")) G0 = s.number("fracture_energy", std::nullopt, positive());
+  if (s.has("critical_stretch")) s0 = s.number("critical_stretch", std::nullopt, positive());
+}
+
 }  // namespace periadapt::deck_sections

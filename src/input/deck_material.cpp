@@ -48,17 +48,9 @@ void parse_model_and_material(Section& top, Deck& dk) {
                                      : std::string("must be in (-1, 0.5) for the LPS model");
       });
     } else if (s.has("poisson_ratio")) {
-      dk.nu = s.number("poisson_ratio");
-      if (std::abs(*dk.nu - nu_bb) > 1e-3)
-        s.fail("poisson_ratio", "the bond-based PMB model fixes Poisson's ratio to " +
-                                    std::string(nu_bb > 0.3 ? "1/3 (plane stress)"
-                                                            : "1/4 (1D, 3D, plane strain)") +
-                                    "; omit the key or give that value");
+      dk.nu = check_bond_based_poisson(s, nu_bb, "");
     }
-    if (s.has("fracture_energy") && s.has("critical_stretch"))
-      s.fail("critical_stretch", "give either fracture_energy or critical_stretch, not both");
-    if (s.has("fracture_energy")) dk.G0 = s.number("fracture_energy", std::nullopt, positive());
-    if (s.has("critical_stretch")) dk.s0 = s.number("critical_stretch", std::nullopt, positive());
+    parse_fracture_keys(s, dk.G0, dk.s0);
     dk.thermal_strain = s.number("thermal_strain", 0.0, [](double v) {
       return std::abs(v) < 0.1 ? std::string()
                                : std::string("alpha dT is a small strain: |value| < 0.1");

@@ -30,6 +30,11 @@ Shape parse_region(Section s, int dim);
 std::array<std::optional<std::string>, 3> parse_components(Section& s, const std::string& key,
                                                            int dim);
 TimeFunction parse_time(std::optional<Section> s);
+// A material mapping's poisson_ratio under a bond-based model: only its fixed value nu_bb
+// (`whose`: words naming the material in the message, e.g. "of every block "); returns it.
+double check_bond_based_poisson(Section& s, double nu_bb, const std::string& whose);
+// A material mapping's fracture_energy or critical_stretch (not both).
+void parse_fracture_keys(Section& s, std::optional<double>& G0, std::optional<double>& s0);
 bool segment_meets_body(const Box& body, const Vec3& a, const Vec3& b, int dim);
 
 // Files a deck names are found relative to its folder.
