@@ -3,7 +3,8 @@
 # machine has fewer cores) ends exactly where the serial run ends: history.csv and
 # refinement.csv but their wall-time columns, every snapshot byte for byte (hence the same
 # broken bonds and displacements), summary.json but timings, paths and the rank report. Then a
-# checkpoint written on 2 ranks (every 100 steps) restarts on 3 and ends as the serial run does.
+# checkpoint written on 2 ranks (every 100 steps) restarts on 3 and ends as the serial run does;
+# an output failure on rank 0 stops every rank with exit code 4.
 # Skipped (exit 0 with a note) in a build without MPI.
 set -u
 bin="$1"; shift
@@ -70,4 +71,10 @@ while (($#)); do
     fi
   fi
 done
+# An output failure meets rank 0 alone (it writes the files): every rank stops, exit code 4.
+first_deck=$(ls "$(dirname "$0")/../examples/crack_branching_2d.yaml")
+timeout 120 mpirun -np 2 "$bin" run "$first_deck" --out /proc/periadapt-no-folder --quiet \
+  --threads 1 --set solver.end_time=1e-6 > "$tmp/outfail.log" 2>&1; rc=$?
+if [[ $rc -eq 4 ]]; then echo "ok   an output failure on rank 0 stops all ranks (exit 4)"
+else echo "FAIL output failure under mpirun: exit $rc: $(head -3 "$tmp/outfail.log")"; fail=1; fi
 exit $fail

@@ -382,9 +382,12 @@ int main(int argc, char** argv) {
       } catch (const OutputError&) {
       }
     }
+    // Rank 0 alone writes files: the other ranks would wait for it in the next exchange.
+    if (mpi::distributed()) mpi::abort(4);
     return 4;
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: {}\n", e.what());
+    if (mpi::distributed()) mpi::abort(1);
     return 1;
   }
 }

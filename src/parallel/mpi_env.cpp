@@ -76,6 +76,13 @@ bool built_with_mpi() {
 int rank() { return g_rank; }
 int size() { return g_active ? g_size : 1; }
 
+void abort(int code) {
+#ifdef PERIADAPT_HAVE_MPI
+  if (g_active) MPI_Abort(MPI_COMM_WORLD, code);
+#endif
+  std::exit(code);
+}
+
 long max(long v) {
 #ifdef PERIADAPT_HAVE_MPI
   if (g_active) MPI_Allreduce(MPI_IN_PLACE, &v, 1, MPI_LONG, MPI_MAX, MPI_COMM_WORLD);

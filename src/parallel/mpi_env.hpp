@@ -22,6 +22,9 @@ int rank();
 int size();
 inline bool distributed() { return size() > 1; }
 
+// Ends every rank with exit code `code` (an error one rank met alone).
+[[noreturn]] void abort(int code);
+
 // Largest value over the ranks.
 long max(long v);
 // Each rank's `mine` concatenated in rank order, and (counts) how many each gave.
