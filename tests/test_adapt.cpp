@@ -24,16 +24,8 @@ namespace {
 // A 30 x 16 mm glass plate with a pre-crack from its left edge.
 DeckBuilder plate() {
   const std::vector<std::vector<double>> crack = {{0, 0.008}, {0.0121, 0.008}};
-  DeckBuilder d;
-  d.set("model.dimension", 2)
-      .set("model.plane", "stress")
-      .set("material.youngs_modulus", 72.0e9)
-      .set("material.density", 2440.0)
-      .set("material.fracture_energy", 135.0)
-      .set("discretization.spacing", 0.001)
-      .set("discretization.horizon_factor", 3.0)
-      .set("discretization.body.box.min", {0.0, 0.0})
-      .set("discretization.body.box.max", {0.03, 0.016})
+  DeckBuilder d = test::glass_plate({0.0, 0.0}, {0.03, 0.016});
+  d
       .append("cracks", DeckBuilder().set("segment", crack))
       .set("solver.time_step", 5.0e-8)
       .set("solver.steps", 10);
@@ -65,16 +57,8 @@ DeckBuilder cracked_plate_deck(double traction, const DeckBuilder& adapt, int st
   const std::vector<std::vector<double>> crack = {{0, 0.01}, {0.015, 0.01}};
   const DeckBuilder top = test::box({0.0, 0.019}, {0.04, 0.02});
   const DeckBuilder bottom = test::box({0.0, 0.0}, {0.04, 0.001});
-  DeckBuilder d;
-  d.set("model.dimension", 2)
-      .set("model.plane", "stress")
-      .set("material.youngs_modulus", 72.0e9)
-      .set("material.density", 2440.0)
-      .set("material.fracture_energy", 135.0)
-      .set("discretization.spacing", 0.001)
-      .set("discretization.horizon_factor", 3.0)
-      .set("discretization.body.box.min", {0.0, 0.0})
-      .set("discretization.body.box.max", {0.04, 0.02})
+  DeckBuilder d = test::glass_plate({0.0, 0.0}, {0.04, 0.02});
+  d
       .append("cracks", DeckBuilder().set("segment", crack))
       .append("loads", DeckBuilder()
                            .set("type", "traction")

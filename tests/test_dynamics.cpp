@@ -288,16 +288,7 @@ TEST(Dynamics, AdaptiveStepCheckCountsAnInitialRefinementOnce) {
   // refined grid and must be accepted; 60 ns must be refused with the key. (The check used to
   // apply the 1/4 of level 2 to a bound that already came from the level-2 nodes.)
   auto deck = [](double dt) {
-    return DeckBuilder()
-        .set("model.dimension", 2)
-        .set("model.plane", "stress")
-        .set("material.youngs_modulus", 72.0e9)
-        .set("material.density", 2440.0)
-        .set("material.fracture_energy", 135.0)
-        .set("discretization.spacing", 0.001)
-        .set("discretization.horizon_factor", 3.0)
-        .set("discretization.body.box.min", {0.0, 0.0})
-        .set("discretization.body.box.max", {0.02, 0.02})
+    return test::glass_plate({0.0, 0.0}, {0.02, 0.02})
         .set("damage.enabled", false)
         .set("adapt.max_level", 2)
         .set("adapt.energy_trigger", 0.7)

@@ -1,6 +1,7 @@
 #pragma once
 // Small builders shared by the tests: deck pieces, and models on uniform grids.
 #include <algorithm>
+#include <initializer_list>
 #include <cmath>
 #include <optional>
 #include <string>
@@ -25,6 +26,22 @@ inline DeckBuilder box(const std::vector<double>& lo, const std::vector<double>&
 // The components of a prescribed motion or an initial field, each an expression in x, y, z, t;
 // std::nullopt leaves a component free (YAML null).
 using Components = std::vector<std::optional<std::string>>;
+
+// A 2D plane-stress soda-lime glass plate (E = 72 GPa, rho = 2440 kg/m^3, G0 = 135 J/m^2) on a
+// 1 mm grid with m = 3, over the box [lo, hi]: the tests' common specimen.
+inline DeckBuilder glass_plate(std::initializer_list<double> lo, std::initializer_list<double> hi) {
+  DeckBuilder d;
+  d.set("model.dimension", 2)
+      .set("model.plane", "stress")
+      .set("material.youngs_modulus", 72.0e9)
+      .set("material.density", 2440.0)
+      .set("material.fracture_energy", 135.0)
+      .set("discretization.spacing", 0.001)
+      .set("discretization.horizon_factor", 3.0)
+      .set("discretization.body.box.min", lo)
+      .set("discretization.body.box.max", hi);
+  return d;
+}
 
 // Displaces every node by the homogeneous strain eps (u = eps x, first `ns.dim` components).
 inline void apply_homogeneous_strain(NodeSet& ns, const double eps[3][3]) {

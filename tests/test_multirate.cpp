@@ -23,16 +23,8 @@ namespace {
 // A 40 mm x 20 mm glass plate (1 mm, m = 3) with a Gaussian bump of displacement at its centre.
 DeckBuilder plate_deck() {
   const std::string bump = "exp(-((x-0.02)^2+(y-0.01)^2)/0.003^2)";
-  DeckBuilder d;
-  d.set("model.dimension", 2)
-      .set("model.plane", "stress")
-      .set("material.youngs_modulus", 72.0e9)
-      .set("material.density", 2440.0)
-      .set("material.fracture_energy", 135.0)
-      .set("discretization.spacing", 0.001)
-      .set("discretization.horizon_factor", 3.0)
-      .set("discretization.body.box.min", {0.0, 0.0})
-      .set("discretization.body.box.max", {0.04, 0.02})
+  DeckBuilder d = test::glass_plate({0.0, 0.0}, {0.04, 0.02});
+  d
       .set("initial_conditions.displacement", test::Components{"1e-6*" + bump, "0.5e-6*" + bump})
       .set("damage.enabled", false)
       .set("solver.time_step", 1.0e-8)

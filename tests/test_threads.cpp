@@ -18,16 +18,8 @@ namespace {
 // The crack-branching plate at 1 mm, 10 us: the crack starts, so breaking is exercised.
 DeckBuilder branching_plate(const std::string& pairing = "source_horizon") {
   const std::vector<std::vector<double>> crack = {{0, 0.02}, {0.05, 0.02}};
-  DeckBuilder d;
-  d.set("model.dimension", 2)
-      .set("model.plane", "stress")
-      .set("material.youngs_modulus", 72.0e9)
-      .set("material.density", 2440.0)
-      .set("material.fracture_energy", 135.0)
-      .set("discretization.spacing", 0.001)
-      .set("discretization.horizon_factor", 3.0)
-      .set("discretization.body.box.min", {0.0, 0.0})
-      .set("discretization.body.box.max", {0.1, 0.04})
+  DeckBuilder d = test::glass_plate({0.0, 0.0}, {0.1, 0.04});
+  d
       .append("cracks", DeckBuilder().set("segment", crack))
       .append("loads", DeckBuilder()
                            .set("type", "traction")
