@@ -124,6 +124,7 @@ struct Deck {
   std::optional<double> memory_limit_gb;
   bool dual_horizon = false;  // static solver: bonds act on both ends (dual-horizon form)
   PartitionMethod partition = PartitionMethod::Rcb;  // distributed runs: Zoltan's method
+  double rebalance_threshold = 0.10;  // distributed runs: repartition past this imbalance
   std::optional<double> time_step;
   double safety = 0.8;
   bool allow_unstable_time_step = false;

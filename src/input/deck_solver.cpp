@@ -84,6 +84,11 @@ void parse_solver(Section& top, Deck& dk) {
     // How mpirun runs split the rows (parallel/row_partition.hpp).
     dk.partition = s.choice("partition", {"rcb", "hsfc"}, "rcb") == "rcb" ? PartitionMethod::Rcb
                                                                           : PartitionMethod::Hsfc;
+    dk.rebalance_threshold = s.number("rebalance_threshold", dk.rebalance_threshold, [](double v) {
+      return (v >= 0.01 && v <= 10) ? std::string()
+                                    : std::string("must be in [0.01, 10] (largest rank's bonds over "
+                                                  "the mean, less 1)");
+    });
     s.finish();
   }
   if (auto c = top.optional_section("contact")) {

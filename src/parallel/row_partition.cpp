@@ -17,30 +17,32 @@ namespace periadapt {
 namespace {
 
 #ifdef PERIADAPT_HAVE_MPI
-// What Zoltan's callbacks read: the nodes this rank hands in (a contiguous id range; every rank
-// holds all nodes, so any disjoint split of the ids works as the starting distribution).
+// What Zoltan's callbacks read: the nodes this rank hands in. The first split hands in a
+// contiguous id range (every rank holds all nodes, so any disjoint split is a valid start); a
+// repartition hands in the rank's current rows.
 struct ZoltanInput {
   const NodeSet* ns;
   const BondFamilies* bf;
-  std::uint32_t first, count;
+  std::vector<std::uint32_t> ids;
 };
+
+float row_weight(const NodeSet& ns, const BondFamilies& bf, std::uint32_t i) {
+  // Work per row: its bonds (an inactive row costs a flag test).
+  return (ns.flags[i] & kActive) ? static_cast<float>(bf.end(i) - bf.begin(i)) + 1.0f : 0.01f;
+}
 
 int num_obj(void* data, int* ierr) {
   *ierr = ZOLTAN_OK;
-  return static_cast<int>(static_cast<ZoltanInput*>(data)->count);
+  return static_cast<int>(static_cast<ZoltanInput*>(data)->ids.size());
 }
 
 void obj_list(void* data, int, int, ZOLTAN_ID_PTR gids, ZOLTAN_ID_PTR lids, int wdim, float* w,
               int* ierr) {
   const auto& in = *static_cast<ZoltanInput*>(data);
-  for (std::uint32_t k = 0; k < in.count; ++k) {
-    const std::uint32_t i = in.first + k;
-    gids[k] = i;
-    lids[k] = k;
-    // Work per row: its bonds (an inactive row costs a flag test).
-    if (wdim == 1)
-      w[k] = (in.ns->flags[i] & kActive) ? static_cast<float>(in.bf->end(i) - in.bf->begin(i)) + 1.0f
-                                         : 0.01f;
+  for (std::size_t k = 0; k < in.ids.size(); ++k) {
+    gids[k] = in.ids[k];
+    lids[k] = static_cast<ZOLTAN_ID_TYPE>(k);
+    if (wdim == 1) w[k] = row_weight(*in.ns, *in.bf, in.ids[k]);
   }
   *ierr = ZOLTAN_OK;
 }
@@ -58,16 +60,25 @@ void geom_multi(void* data, int, int, int n, ZOLTAN_ID_PTR gids, ZOLTAN_ID_PTR, 
   *ierr = ZOLTAN_OK;
 }
 
-// The rank of every node.
-std::vector<int> zoltan_owners(const NodeSet& ns, const BondFamilies& bf, PartitionMethod method) {
+// The rank of every node: a fresh split when `current` is empty, else a repartition that starts
+// from `current` (the rank of every node).
+std::vector<int> zoltan_owners(const NodeSet& ns, const BondFamilies& bf, PartitionMethod method,
+                               const std::vector<int>& current) {
   const std::size_t n = ns.size();
   const int P = mpi::size(), r = mpi::rank();
-  const std::size_t lo = n * static_cast<std::size_t>(r) / static_cast<std::size_t>(P);
-  const std::size_t hi = n * static_cast<std::size_t>(r + 1) / static_cast<std::size_t>(P);
-  ZoltanInput in{&ns, &bf, static_cast<std::uint32_t>(lo), static_cast<std::uint32_t>(hi - lo)};
+  ZoltanInput in{&ns, &bf, {}};
+  if (current.empty()) {
+    const std::size_t lo = n * static_cast<std::size_t>(r) / static_cast<std::size_t>(P);
+    const std::size_t hi = n * static_cast<std::size_t>(r + 1) / static_cast<std::size_t>(P);
+    for (std::size_t i = lo; i < hi; ++i) in.ids.push_back(static_cast<std::uint32_t>(i));
+  } else {
+    for (std::size_t i = 0; i < n; ++i)
+      if (current[i] == r) in.ids.push_back(static_cast<std::uint32_t>(i));
+  }
   Zoltan_Struct* zz = Zoltan_Create(MPI_COMM_WORLD);
   Zoltan_Set_Param(zz, "DEBUG_LEVEL", "0");
   Zoltan_Set_Param(zz, "LB_METHOD", method == PartitionMethod::Rcb ? "RCB" : "HSFC");
+  Zoltan_Set_Param(zz, "LB_APPROACH", current.empty() ? "PARTITION" : "REPARTITION");
   Zoltan_Set_Param(zz, "NUM_GID_ENTRIES", "1");
   Zoltan_Set_Param(zz, "NUM_LID_ENTRIES", "1");
   Zoltan_Set_Param(zz, "OBJ_WEIGHT_DIM", "1");
@@ -86,42 +97,93 @@ std::vector<int> zoltan_owners(const NodeSet& ns, const BondFamilies& bf, Partit
     Zoltan_Destroy(&zz);
     throw std::runtime_error("Zoltan could not partition the nodes (error " + std::to_string(rc) + ")");
   }
-  // Objects not exported stay on this rank.
-  std::vector<int> local(hi - lo, r);
-  for (int k = 0; k < nexp; ++k) local[exp_l[k]] = exp_p[k];
+  // Objects not exported stay on this rank; every rank then learns every node's new rank.
+  std::vector<int> mine(in.ids.size(), r);
+  for (int k = 0; k < nexp; ++k) mine[exp_l[k]] = exp_p[k];
   Zoltan_LB_Free_Part(&imp_g, &imp_l, &imp_p, &imp_to);
   Zoltan_LB_Free_Part(&exp_g, &exp_l, &exp_p, &exp_to);
   Zoltan_Destroy(&zz);
-  return mpi::all_gather(local);  // in id order: the ranges are contiguous and in rank order
+  std::vector<std::uint32_t> pairs;  // (id, rank) of the nodes handed in here
+  pairs.reserve(2 * mine.size());
+  for (std::size_t k = 0; k < mine.size(); ++k) {
+    pairs.push_back(in.ids[k]);
+    pairs.push_back(static_cast<std::uint32_t>(mine[k]));
+  }
+  const std::vector<std::uint32_t> all = mpi::all_gather(pairs);
+  std::vector<int> owner(n, 0);
+  for (std::size_t k = 0; k + 1 < all.size(); k += 2)
+    owner[static_cast<std::size_t>(all[k])] = static_cast<int>(all[k + 1]);
+  return owner;
 }
 #endif
 
 }  // namespace
 
-void refresh_partition(RowPartition& p, const NodeSet& ns, const BondFamilies& bf) {
-  if (!p.active || p.nodes == ns.size()) return;
-#ifdef PERIADAPT_HAVE_MPI
-  const std::vector<int> owner = zoltan_owners(ns, bf, p.method);
-  const int me = mpi::rank();
-  p.owned.clear();
-  p.mine.assign(ns.size(), 0);
+namespace {
+
+// The largest rank's bonds over the mean under `owner`.
+double bond_imbalance(const NodeSet& ns, const BondFamilies& bf, const std::vector<int>& owner) {
   std::vector<double> bonds(static_cast<std::size_t>(mpi::size()), 0.0);
-  for (std::size_t i = 0; i < ns.size(); ++i) {
+  for (std::size_t i = 0; i < ns.size(); ++i)
     if (ns.flags[i] & kActive)
       bonds[static_cast<std::size_t>(owner[i])] += static_cast<double>(bf.end(i) - bf.begin(i));
-    if (owner[i] != me) continue;
+  const double mean = std::accumulate(bonds.begin(), bonds.end(), 0.0) / static_cast<double>(bonds.size());
+  return mean > 0 ? *std::max_element(bonds.begin(), bonds.end()) / mean : 1.0;
+}
+
+void adopt_owners(RowPartition& p, std::vector<int> owner) {
+  const int me = mpi::rank();
+  p.owner = std::move(owner);
+  p.owned.clear();
+  p.mine.assign(p.owner.size(), 0);
+  for (std::size_t i = 0; i < p.owner.size(); ++i) {
+    if (p.owner[i] != me) continue;
     p.owned.push_back(static_cast<std::uint32_t>(i));
     p.mine[i] = 1;
   }
   p.all_owned.clear();
   for (int r = 0; r < mpi::size(); ++r)
-    for (std::size_t i = 0; i < ns.size(); ++i)
-      if (owner[i] == r) p.all_owned.push_back(static_cast<std::uint32_t>(i));
-  const double mean = std::accumulate(bonds.begin(), bonds.end(), 0.0) / static_cast<double>(bonds.size());
-  p.imbalance = mean > 0 ? *std::max_element(bonds.begin(), bonds.end()) / mean : 1.0;
+    for (std::size_t i = 0; i < p.owner.size(); ++i)
+      if (p.owner[i] == r) p.all_owned.push_back(static_cast<std::uint32_t>(i));
+}
+
+}  // namespace
+
+void refresh_partition(RowPartition& p, const NodeSet& ns, const BondFamilies& bf) {
+  if (!p.active || (p.nodes == ns.size() && p.bonds == bf.neighbor.size())) return;
+#ifdef PERIADAPT_HAVE_MPI
+  std::vector<int> owner;
+  if (p.owner.empty()) {
+    owner = zoltan_owners(ns, bf, p.method, {});
+    ++p.partitions;
+  } else {
+    // Children join their parent's rank (a node without one, the rank with the fewest bonds).
+    owner = p.owner;
+    owner.resize(ns.size(), -1);
+    std::vector<double> load(static_cast<std::size_t>(mpi::size()), 0.0);
+    for (std::size_t i = 0; i < p.owner.size(); ++i)
+      if (ns.flags[i] & kActive)
+        load[static_cast<std::size_t>(owner[i])] += static_cast<double>(bf.end(i) - bf.begin(i));
+    for (std::size_t i = p.owner.size(); i < ns.size(); ++i) {
+      const std::int32_t a = ns.parent[i];  // older than i, so it has its rank already
+      owner[i] = a >= 0 ? owner[static_cast<std::size_t>(a)]
+                        : static_cast<int>(std::min_element(load.begin(), load.end()) - load.begin());
+      if (ns.flags[i] & kActive)
+        load[static_cast<std::size_t>(owner[i])] += static_cast<double>(bf.end(i) - bf.begin(i));
+    }
+    if (bond_imbalance(ns, bf, owner) > 1.0 + p.rebalance_threshold) {
+      owner = zoltan_owners(ns, bf, p.method, owner);
+      ++p.partitions;
+    } else {
+      ++p.extensions;
+    }
+  }
+  adopt_owners(p, std::move(owner));
+  p.imbalance = bond_imbalance(ns, bf, p.owner);
   p.nodes = ns.size();
-  ++p.partitions;
+  p.bonds = bf.neighbor.size();
 #else
+  (void)ns;
   (void)bf;
   throw std::logic_error("a distributed partition needs a build with MPI");
 #endif

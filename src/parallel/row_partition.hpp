@@ -4,7 +4,11 @@
 // broken bonds, broken weights, energy densities when asked), so that every rank ends each force
 // pass in the state a serial pass gives, bit for bit. The rows are split by Zoltan's recursive
 // coordinate bisection or Hilbert space-filling curve over the node positions, weighted by each
-// row's bond count, and split again when refinement adds nodes. Everything but the force pass
+// row's bond count. When refinement adds nodes, children join their parent's rank; once the
+// largest rank's bonds pass the mean by more than the deck's threshold, Zoltan repartitions
+// starting from the current owners (LB_APPROACH REPARTITION, which keeps moves few). Since every
+// rank holds the whole state, a move hands over ownership only: no bond state travels. Everything
+// but the force pass
 // (integration, refinement events, observers) runs on every rank alike on the same data; rank 0
 // writes the files.
 #include <cstddef>
@@ -25,13 +29,18 @@ struct RowPartition {
   std::vector<std::uint32_t> owned;  // this rank's rows, ascending
   std::vector<char> mine;            // per node: owned here
   std::vector<std::uint32_t> all_owned;  // every rank's owned rows, concatenated in rank order
+  std::vector<int> owner;            // per node: its rank
   std::size_t nodes = 0;             // the node count it was made for
+  std::size_t bonds = 0;             // the bond count it was made for
+  double rebalance_threshold = 0.10;  // repartition when imbalance exceeds 1 + this
   double imbalance = 1.0;            // largest rank's bonds over the mean
-  long partitions = 0;               // how many times it was (re)made
+  long partitions = 0;               // how many times Zoltan made it (the first split included)
+  long extensions = 0;               // refinement events absorbed without a repartition
 };
 
-// Splits the rows when the partition is active and the node count changed since the last split
-// (collective: every rank calls it at the same point).
+// When the partition is active and the nodes or bonds changed since the last call: the first
+// call splits the rows, later ones give new nodes their parent's rank and repartition when the
+// imbalance passes the threshold (collective: every rank calls it at the same point).
 void refresh_partition(RowPartition& p, const NodeSet& ns, const BondFamilies& bf);
 
 // This rank's share of `rows` (all rows when null).

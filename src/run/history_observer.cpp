@@ -17,10 +17,12 @@ HistoryObserver::HistoryObserver(RunView& view, const CrackTipObserver* tip)
 
 void HistoryObserver::on_start(RunView& view) {
   if (!out_.is_open()) return;
+  rank_column_ = view.model.partition.active;
   out_ << "step,time_s,kinetic_energy_J,strain_energy_J,external_work_J,energy_balance_J,"
           "broken_bonds,damaged_nodes,damage_sum,tip_x_m,tip_y_m,tip_z_m,tip_speed_m_s,nodes,"
           "bonds," + resultant_header(view.model) +
-              region_header(view.deck.output.regions, view.model.nodes.dim) + "wall_time_s\n";
+              region_header(view.deck.output.regions, view.model.nodes.dim) +
+              (rank_column_ ? "rank_imbalance," : "") + "wall_time_s\n";
 }
 
 bool HistoryObserver::wants_energy_density(long step) const {
@@ -50,11 +52,13 @@ void HistoryObserver::on_step(RunView& view, long step, bool closing) {
       view.model, [&](const BodyLoad& l) { return vv.applied_force(l); },
       [&](const PrescribedMotion& p) { return vv.reaction_force(p); });
   out_ << fmt::format(
-      "{},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{},{},{}{}{:.4f}\n",
+      "{},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{},{},{}{}{}{:.4f}\n",
       step, vv.time(), K_, U_, vv.external_work(), K_ + U_ - vv.external_work(), vv.broken_bonds(),
       damaged_nodes_, damage_sum_, tip[0], tip[1], tip[2], speed, active,
       view.model.bonds.num_bonds(), resultants,
-      region_columns(view.deck.output.regions, ns, view.energy_density(), ns.f), view.elapsed_s());
+      region_columns(view.deck.output.regions, ns, view.energy_density(), ns.f),
+      rank_column_ ? fmt::format("{:.4f},", view.model.partition.imbalance) : std::string(),
+      view.elapsed_s());
 }
 
 void HistoryObserver::save(ArchiveWriter& w) {
@@ -69,6 +73,8 @@ void HistoryObserver::save(ArchiveWriter& w) {
 void HistoryObserver::restore(ArchiveReader& r, RunView&) {
   r.tag("HIST");
   const auto text = r.get<std::string>();
+  // The columns the checkpointed run chose go on, whatever the rank count now.
+  rank_column_ = text.substr(0, text.find('\n')).find("rank_imbalance") != std::string::npos;
   if (out_.is_open()) out_ << text;
   r.get(K_);
   r.get(U_);

@@ -26,6 +26,7 @@ class HistoryObserver : public RunObserver {
   long every_, total_;
   double K_ = 0, U_ = 0, damage_sum_ = 0;
   std::size_t damaged_nodes_ = 0;
+  bool rank_column_ = false;  // distributed runs: the partition's bond imbalance
 };
 
 }  // namespace periadapt

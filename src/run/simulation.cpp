@@ -111,9 +111,9 @@ void enable_distributed_forces(const Deck& dk, Model& m) {
     refuse("model.formulation", "formulation " + dk.formulation + " keeps a history per bond");
   if (m.formulation.dual_horizon) refuse("solver.bond_pairing", "the dual-horizon pairing");
   if (m.pdro.enabled) refuse("damage.overlay", "the refinement overlay");
-  if (!m.impactors.empty()) refuse("impactors", "rigid impactors");
   m.partition.active = true;
   m.partition.method = dk.partition;
+  m.partition.rebalance_threshold = dk.rebalance_threshold;
 }
 
 RunResult run_simulation(const Deck& dk, const RunOptions& opt) {

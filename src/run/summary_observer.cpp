@@ -67,6 +67,8 @@ void SummaryObserver::finish(RunView& view, RunResult& res) {
     j["ranks"] = {{"count", mpi::size()},
                   {"partition", m.partition.method == PartitionMethod::Rcb ? "rcb" : "hsfc"},
                   {"partitions_made", m.partition.partitions},
+                  {"events_kept_partition", m.partition.extensions},
+                  {"rebalance_threshold", m.partition.rebalance_threshold},
                   {"bond_imbalance", m.partition.imbalance}};
   j["setup_time_s"] = tot.setup_s;
   j["solver_time_s"] = tot.solver_s;

@@ -77,8 +77,13 @@ std::size_t distributed_forces(Model& m, bool allow_breaking, const std::vector<
     pmb_forces(m.nodes, m.bonds, m.material.shape, allow_breaking, &broken_here, W, &m.pdro,
                m.material.thermal_strain, &mine, stretch, &m.block_pairs);
   if (m.contact.enabled) add_contact_forces(m.contact, m.nodes, &mine, W);
-  return share_force_pass(m.partition, m.nodes, m.bonds, rows ? mine : m.partition.owned,
-                          broken_here, log, W, stretch);
+  const std::size_t broken = share_force_pass(m.partition, m.nodes, m.bonds,
+                                              rows ? mine : m.partition.owned, broken_here, log, W,
+                                              stretch);
+  // Every rank holds the whole state: each adds the impactors' contact to the shared forces
+  // and sums the impactors' reactions over all nodes in the serial run's order.
+  if (!m.impactors.empty()) add_impactor_forces(m.impactors, m.nodes, rows, W);
+  return broken;
 }
 
 }  // namespace
