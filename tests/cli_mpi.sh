@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Distributed runs (mpirun): each deck on 2 and 3 ranks (1 thread each, oversubscribed where the
 # machine has fewer cores) ends exactly where the serial run ends: history.csv and
-# refinement.csv but their wall-time columns, every snapshot byte for byte (hence the same
-# broken bonds and displacements), summary.json but timings, paths and the rank report. Then a
+# refinement.csv but their wall-time columns, every snapshot's nodes with every field bit for bit
+# (the ranks' VTU pieces merged; hence the same broken bonds and displacements), summary.json but
+# timings, paths and the rank report. Then a
 # checkpoint written on 2 ranks (every 100 steps) restarts on 3 and ends as the serial run does;
 # an output failure on rank 0 stops every rank with exit code 4.
 # Skipped (exit 0 with a note) in a build without MPI.
@@ -17,7 +18,7 @@ fail=0
 
 same() {  # reference folder, folder
   python3 - "$1" "$2" <<'PY'
-import json, os, sys
+import json, os, re, struct, sys
 a, b = sys.argv[1], sys.argv[2]
 def rows(d, f):  # less the wall time and the distributed run's rank_imbalance column
     p = os.path.join(d, f)
@@ -29,11 +30,38 @@ def rows(d, f):  # less the wall time and the distributed run's rank_imbalance c
     return lines
 for f in ["history.csv", "refinement.csv"]:
     if rows(a, f) != rows(b, f): sys.exit(f"{f} differs")
-snaps = sorted(f for f in os.listdir(a) if f.endswith(".vtu"))
-if snaps != sorted(f for f in os.listdir(b) if f.endswith(".vtu")): sys.exit("other snapshots")
+def arrays(path):  # every appended array of a raw VTU: name -> tuple of values
+    data = open(path, "rb").read()
+    head_end = data.index(b"<AppendedData")
+    raw = data.index(b"_", head_end) + 1
+    out = {}
+    for m in re.finditer(r"<DataArray ([^>]*)/>", data[:head_end].decode()):
+        at = dict(re.findall(r'(\w+)="([^"]*)"', m.group(1)))
+        off = raw + int(at["offset"])
+        n = struct.unpack_from("<Q", data, off)[0]
+        code, size = {"Float64": ("d", 8), "Int64": ("q", 8), "UInt8": ("B", 1)}[at["type"]]
+        vals = struct.unpack_from("<%d%s" % (n // size, code), data, off + 8)
+        k = int(at.get("NumberOfComponents", "1"))
+        out[at["Name"]] = [vals[i:i + k] for i in range(0, len(vals), k)]
+    return out
+def points(path):  # node rows (position, then every point field in name order), sorted
+    f = arrays(path)
+    names = sorted(k for k in f if k not in ("Points", "connectivity", "offsets", "types", "rank"))
+    return [tuple(p) + sum((tuple(f[k][i]) for k in names), ()) for i, p in enumerate(f["Points"])], names
+def snapshot(d, stem):  # a serial VTU, or the pieces a PVTU names, merged
+    if os.path.exists(os.path.join(d, stem + ".vtu")):
+        return sorted(points(os.path.join(d, stem + ".vtu"))[0])
+    pvtu = open(os.path.join(d, stem + ".pvtu")).read()
+    rows = []
+    for piece in re.findall(r'<Piece Source="([^"]+)"', pvtu):
+        rows += points(os.path.join(d, piece))[0]
+    return sorted(rows)
+stems = lambda d: sorted(f.rsplit(".", 1)[0] for f in os.listdir(d)
+                         if f.endswith(".vtu") and "_r" not in f or f.endswith(".pvtu"))
+snaps = stems(a)
+if snaps != stems(b): sys.exit("other snapshots")
 for f in snaps:
-    if open(os.path.join(a, f), "rb").read() != open(os.path.join(b, f), "rb").read():
-        sys.exit(f"{f} differs")
+    if snapshot(a, f) != snapshot(b, f): sys.exit(f"{f} differs")
 skip = {"wall_time_s", "setup_time_s", "solver_time_s", "sampling_time_s", "snapshot_output_time_s",
         "bond_evals_per_s", "family_build_time_s", "family_build_in_steps", "peak_rss_bytes",
         "refinement_wall_s", "event_wall_s", "outputs", "threads", "ranks", "restarted_from_step",

@@ -22,13 +22,60 @@ VtuSeries::VtuSeries(std::string directory, std::string basename, bool zlib)
   pvd_ = dir_ + "/" + base_ + ".pvd";
 }
 
+std::string VtuSeries::snapshot_stem() const {
+  return fmt::format("{}_{:05d}", base_, entries_.size());
+}
+
 std::string VtuSeries::write(double time, const NodeSet& ns, const std::vector<PointField>& fields) {
   std::vector<std::uint32_t> ids;
   for (std::size_t i = 0; i < ns.size(); ++i)
     if (ns.flags[i] & kActive) ids.push_back(static_cast<std::uint32_t>(i));
-  const std::uint64_t n = ids.size();
-  const std::string name = fmt::format("{}_{:05d}.vtu", base_, entries_.size());
+  const std::string name = snapshot_stem() + ".vtu";
   const std::string path = dir_ + "/" + name;
+  write_vtu(path, ns, ids, fields);
+  entries_.emplace_back(time, name);
+  write_pvd();
+  return path;
+}
+
+std::string VtuSeries::write_piece(double time, const NodeSet& ns, const std::vector<std::uint32_t>& ids,
+                                   const std::vector<PointField>& fields, int rank) {
+  const std::string path = fmt::format("{}/{}_r{}.vtu", dir_, snapshot_stem(), rank);
+  write_vtu(path, ns, ids, fields);
+  entries_.emplace_back(time, snapshot_stem() + ".pvtu");
+  return path;
+}
+
+void VtuSeries::write_parallel_index(const std::vector<PointField>& fields, int pieces) {
+  const std::string& name = entries_.back().second;
+  const std::string stem = name.substr(0, name.size() - 5);
+  write_file_atomically(dir_ + "/" + name, [&](std::ostream& out) {
+    out << fmt::format(
+        "<?xml version=\"1.0\"?>\n<VTKFile type=\"PUnstructuredGrid\" version=\"1.0\" "
+        "byte_order=\"LittleEndian\" header_type=\"UInt64\"{}>\n"
+        "  <PUnstructuredGrid GhostLevel=\"0\">\n    <PPointData>\n",
+        compress_ ? " compressor=\"vtkZLibDataCompressor\"" : "");
+    for (const PointField& f : fields)
+      out << fmt::format(
+          "      <PDataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"{}\"/>\n", f.name,
+          f.components);
+    out << "    </PPointData>\n    <PPoints>\n"
+           "      <PDataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\"/>\n"
+           "    </PPoints>\n    <PCells>\n"
+           "      <PDataArray type=\"Int64\" Name=\"connectivity\" NumberOfComponents=\"1\"/>\n"
+           "      <PDataArray type=\"Int64\" Name=\"offsets\" NumberOfComponents=\"1\"/>\n"
+           "      <PDataArray type=\"UInt8\" Name=\"types\" NumberOfComponents=\"1\"/>\n"
+           "    </PCells>\n";
+    for (int r = 0; r < pieces; ++r) out << fmt::format("    <Piece Source=\"{}_r{}.vtu\"/>\n", stem, r);
+    out << "  </PUnstructuredGrid>\n</VTKFile>\n";
+  });
+  write_pvd();
+}
+
+void VtuSeries::write_vtu(const std::string& path, const NodeSet& ns,
+                          const std::vector<std::uint32_t>& ids,
+                          const std::vector<PointField>& fields) const {
+  const std::uint64_t n = ids.size();
   // Each array's block of the appended section, built first so that the XML header can give
   // their offsets: raw, [uint64 byte count][payload]; zlib, VTK's compressed layout
   // [uint64 blocks][block size][last block's size][compressed size per block][zlib streams].
@@ -114,9 +161,6 @@ std::string VtuSeries::write(double time, const NodeSet& ns, const std::vector<P
     for (const std::string& b : blocks) out.write(b.data(), static_cast<std::streamsize>(b.size()));
     out << "\n  </AppendedData>\n</VTKFile>\n";
   }, true);
-  entries_.emplace_back(time, name);
-  write_pvd();
-  return path;
 }
 
 void VtuSeries::write_pvd() const {

@@ -1,6 +1,7 @@
 #pragma once
 // VTU snapshots under one PVD, output.vtu_count of them evenly over the run (and one more when an
-// interrupted run stops between them).
+// interrupted run stops between them). A distributed run writes one piece per rank (its own
+// rows) under a PVTU per snapshot.
 #include <memory>
 #include <set>
 
@@ -19,6 +20,7 @@ class SnapshotObserver : public RunObserver {
   void finish(RunView& view, RunResult& result) override;
 
  private:
+  bool pieces_;  // distributed run: one VTU piece per rank under a PVTU
   std::set<long> steps_;
   std::unique_ptr<VtuSeries> vtu_;
 };
