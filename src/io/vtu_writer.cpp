@@ -18,7 +18,9 @@ namespace periadapt {
 
 VtuSeries::VtuSeries(std::string directory, std::string basename, bool zlib)
     : dir_(std::move(directory)), base_(std::move(basename)), compress_(zlib) {
-  std::filesystem::create_directories(dir_);
+  std::error_code ec;
+  std::filesystem::create_directories(dir_, ec);
+  if (ec) throw OutputError("cannot create the output folder " + dir_ + ": " + ec.message());
   pvd_ = dir_ + "/" + base_ + ".pvd";
 }
 
