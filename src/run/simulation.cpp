@@ -104,11 +104,9 @@ TimeStepChoice choose_time_step(const Deck& dk, const Model& m) {
 void enable_distributed_forces(const Deck& dk, Model& m) {
   const auto refuse = [&](const std::string& key, const std::string& why) {
     throw DeckError(dk.file, 0, 0, key,
-                    why + "; distributed runs (mpirun) take pmb or lps with "
-                          "bond_pairing: source_horizon; run it on one rank");
+                    why + "; distributed runs (mpirun) take bond_pairing: source_horizon "
+                          "without the overlay; run it on one rank");
   };
-  if (m.formulation.keeps_bond_history())
-    refuse("model.formulation", "formulation " + dk.formulation + " keeps a history per bond");
   if (m.formulation.dual_horizon) refuse("solver.bond_pairing", "the dual-horizon pairing");
   if (m.pdro.enabled) refuse("damage.overlay", "the refinement overlay");
   m.partition.active = true;

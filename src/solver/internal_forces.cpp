@@ -1,5 +1,7 @@
 #include "solver/internal_forces.hpp"
 
+#include <bit>
+
 #include "material/contact.hpp"
 #include "material/impactor.hpp"
 #include "material/lps_dual.hpp"
@@ -58,7 +60,8 @@ std::size_t material_forces(Model& m, bool allow_breaking, std::vector<std::uint
 }
 
 // A distributed run's pass (parallel/row_partition.hpp): this rank's share of `rows` (all rows
-// when null), then the owners share their results. PMB and LPS in the source-horizon pairing.
+// when null), then the owners share their results (forces, broken bonds, and the bond states a
+// history law changed). Source-horizon pairing.
 std::size_t distributed_forces(Model& m, bool allow_breaking, const std::vector<std::uint32_t>* rows,
                                std::vector<std::uint64_t>* log, std::vector<double>* W) {
   refresh_partition(m.partition, m.nodes, m.bonds);
@@ -70,7 +73,25 @@ std::size_t distributed_forces(Model& m, bool allow_breaking, const std::vector<
   const bool any_w = mpi::max(W != nullptr) > 0;  // collective: every rank calls it
   if (any_w && !W) W = &w_scratch;
   std::vector<double>* stretch = m.track_breakable_stretch ? &m.breakable_stretch : nullptr;
-  if (m.formulation.kind == Kind::Lps)
+  // History laws: the bond states this rank's rows changed, (bond, new state), for the others.
+  std::vector<std::uint64_t> changed_bonds;
+  std::vector<double> changed_states;
+  if (m.formulation.kind == Kind::HistoryLaw) {
+    BondFamilies& bf = m.bonds;
+    std::vector<double> before;
+    for (std::uint32_t i : mine) before.insert(before.end(), bf.state.begin() + bf.begin(i),
+                                               bf.state.begin() + bf.end(i));
+    BondLawCall c = law_call(m, allow_breaking, &broken_here, W, &mine);
+    c.breakable_stretch = stretch;
+    m.formulation.law->forces(m.nodes, bf, c);
+    std::size_t at = 0;
+    for (std::uint32_t i : mine)
+      for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k, ++at)
+        if (std::bit_cast<std::uint64_t>(bf.state[k]) != std::bit_cast<std::uint64_t>(before[at])) {
+          changed_bonds.push_back(k);
+          changed_states.push_back(bf.state[k]);
+        }
+  } else if (m.formulation.kind == Kind::Lps)
     lps_forces(m.nodes, m.bonds, m.material.shape, m.material.lps_constants, allow_breaking,
                m.lps_scratch, &broken_here, W, &m.pdro, &mine);
   else
@@ -80,6 +101,11 @@ std::size_t distributed_forces(Model& m, bool allow_breaking, const std::vector<
   const std::size_t broken = share_force_pass(m.partition, m.nodes, m.bonds,
                                               rows ? mine : m.partition.owned, broken_here, log, W,
                                               stretch);
+  if (m.formulation.kind == Kind::HistoryLaw) {
+    const std::vector<std::uint64_t> all_bonds = mpi::all_gather(changed_bonds);
+    const std::vector<double> all_states = mpi::all_gather(changed_states);
+    for (std::size_t q = 0; q < all_bonds.size(); ++q) m.bonds.state[all_bonds[q]] = all_states[q];
+  }
   // Every rank holds the whole state: each adds the impactors' contact to the shared forces
   // and sums the impactors' reactions over all nodes in the serial run's order.
   if (!m.impactors.empty()) add_impactor_forces(m.impactors, m.nodes, rows, W);
