@@ -36,6 +36,7 @@ struct RowPartition {
   double imbalance = 1.0;            // largest rank's bonds over the mean
   long partitions = 0;               // how many times Zoltan made it (the first split included)
   long extensions = 0;               // refinement events absorbed without a repartition
+  std::string replicated_because;    // under mpirun but not split: what every rank runs whole
 };
 
 // When the partition is active and the nodes or bonds changed since the last call: the first

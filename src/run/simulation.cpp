@@ -100,15 +100,13 @@ TimeStepChoice choose_time_step(const Deck& dk, const Model& m) {
 }
 
 
-// mpirun: the force passes split over the ranks; what they cannot split yet is refused.
+// mpirun: the force passes split over the ranks. What the split does not cover yet (a bond of the
+// dual-horizon pairing acts on both ends, the overlay re-checks bonds across rows) runs whole on
+// every rank: the same result, no speed-up.
 void enable_distributed_forces(const Deck& dk, Model& m) {
-  const auto refuse = [&](const std::string& key, const std::string& why) {
-    throw DeckError(dk.file, 0, 0, key,
-                    why + "; distributed runs (mpirun) take bond_pairing: source_horizon "
-                          "without the overlay; run it on one rank");
-  };
-  if (m.formulation.dual_horizon) refuse("solver.bond_pairing", "the dual-horizon pairing");
-  if (m.pdro.enabled) refuse("damage.overlay", "the refinement overlay");
+  if (m.formulation.dual_horizon) m.partition.replicated_because = "the dual-horizon pairing";
+  else if (m.pdro.enabled) m.partition.replicated_because = "the refinement overlay";
+  if (!m.partition.replicated_because.empty()) return;
   m.partition.active = true;
   m.partition.method = dk.partition;
   m.partition.rebalance_threshold = dk.rebalance_threshold;
@@ -123,7 +121,12 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
   const double t_setup = std::chrono::duration<double>(clock::now() - t_start).count();
   const TimeStepChoice ts = choose_time_step(dk, m);
   const NodeSet& ns = m.nodes;
-  if (mpi::distributed()) enable_distributed_forces(dk, m);
+  if (mpi::distributed()) {
+    enable_distributed_forces(dk, m);
+    if (!m.partition.replicated_because.empty() && !opt.quiet)
+      fmt::print("note: {} runs whole on every rank under mpirun (the same result as one rank, "
+                 "no speed-up)\n", m.partition.replicated_because);
+  }
 
   const std::string dir = opt.out_dir ? *opt.out_dir : dk.output.directory;
   if (opt.write_files) std::filesystem::create_directories(dir);
