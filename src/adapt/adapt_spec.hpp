@@ -43,6 +43,9 @@ struct AdaptSpec {
   HorizonScaling scaling = HorizonScaling::Delta;
   std::vector<double> m_per_level;  // DeltaM: m of levels 0, 1, ... (at least max_level + 1)
   bool interface_horizon = false;   // thesis 3.2.3: interface nodes get m x distance to coarse
+  // Interface rows' bond factors fitted so that a uniform strain pulls no node (patch test;
+  // discretize/interface_quadrature.hpp). Bond-based forces only.
+  bool interface_fit = false;
   double start_time = 0.0;          // t_st: no refinement before
   int check_every = 1;              // steps between energy-trigger checks
   std::optional<double> energy_fraction;  // energy trigger W >= alpha W_max (None: off)

@@ -1,5 +1,7 @@
 #include "adapt/crack_memory.hpp"
 
+#include "discretize/interface_quadrature.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -150,6 +152,7 @@ std::vector<std::uint32_t> rebuild_families(Model& m, const CrackMemory& mem,
                            p_wave_modulus(D, m.material.plane, m.material.E, m.material.nu),
                            m.surface_correction, m.formulation.state_based(),
                            block_uniaxial_moduli(m));
+  if (m.interface_fit) fit_interface_quadrature(ns, bf, m.material.shape, rebuild);
   apply_precracks(ns, bf, m.cracks, &rebuild);
   CellGrid* fgrid = nullptr;
   std::vector<double> fx[3];

@@ -234,6 +234,14 @@ void parse_adapt(Section& top, Deck& dk) {
     // meets a hole instead of at the hole's stress peak.
     ad.interface_horizon = a->boolean("interface_horizon", defaults);
     ad.refine_loads = a->boolean("refine_loads", defaults && ad.method == NodeGeneration::B);
+    ad.interface_fit = a->boolean("interface_fit", false);
+    if (ad.interface_fit && !Formulation::named(dk.formulation)->bond_based())
+      a->fail("interface_fit", "the fit zeroes the third bond moments that a bond-based force "
+                               "sums; formulation " + dk.formulation + " is state-based");
+    if (ad.interface_fit && dk.dual_horizon)
+      a->fail("interface_fit", "the fit makes each row's own bond sum pass the patch test; the "
+                               "dual-horizon pairing adds other rows' memberships (use "
+                               "bond_pairing: source_horizon)");
     if (ad.refine_loads && ad.method == NodeGeneration::A)
       a->fail("refine_loads", "method a shrinks the loaded parents' cells without handing the "
                               "lost load to the new nodes; use method b");

@@ -71,6 +71,7 @@ struct Model {
   std::vector<Shape> holes;       // ... nor inside a hole
   std::optional<Shape> body_clip; // ... nor outside a non-box body (disk)
   SurfaceCorrection surface_correction = SurfaceCorrection::None;
+  bool interface_fit = false;  // adapt.interface_fit: rebuilt interface rows pass the patch test
   PdroSpec pdro;              // refinement overlay for bond failure (PMB)
   ContactSpec contact;        // short-range repulsion between nodes (material/contact.hpp)
   std::vector<Impactor> impactors;  // rigid bodies that strike it (material/impactor.hpp)

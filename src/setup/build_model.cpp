@@ -153,6 +153,7 @@ Model build_model(const Deck& dk) {
   m.family_build_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   m.surface_correction = dk.surface_correction;
+  m.interface_fit = dk.adapt.interface_fit;
   apply_surface_correction(ns, m.bonds, dk.shape, p_wave_modulus(dk.dim, dk.plane, dk.E, mat.nu),
                            m.surface_correction, m.formulation.state_based(),
                            block_uniaxial_moduli(m));

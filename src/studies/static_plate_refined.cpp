@@ -23,9 +23,13 @@ struct Variant {
   const char* name;
   const char* pairing;
   const char* correction;  // deck value of discretization.surface_correction
+  bool interface_fit = false;  // adapt.interface_fit
 };
 
-const Variant kVariants[4] = {{"scaling", "source_horizon", "false"},
+const Variant kVariants[7] = {{"scaling", "source_horizon", "false"},
+                              {"scaling + interface fit", "source_horizon", "false", true},
+                              {"scaling + moment correction", "source_horizon", "moments"},
+                              {"scaling + moments + interface fit", "source_horizon", "moments", true},
                               {"scaling + DH", "dual_horizon", "false"},
                               {"scaling + DH + surface correction", "dual_horizon", "energy"},
                               {"scaling + DH + moment correction", "dual_horizon", "moments"}};
@@ -38,8 +42,9 @@ std::optional<RunResult> solve_half_refined(const Variant& v, int level, bool up
     fmt::print("{:<6} {:<34} skipped (non-symmetric system beyond our solvers' reach)\n", model, v.name);
     return std::nullopt;
   }
-  const Deck dk = tension_plate_deck(v.correction, v.pairing, level, upper,
-                                           "static-plate-refined (built-in)");
+  Deck dk = tension_plate_deck(v.correction, v.pairing, level, upper,
+                               "static-plate-refined (built-in)");
+  dk.adapt.interface_fit = v.interface_fit;
   RunOptions ro;
   ro.write_files = false;
   ro.quiet = true;
