@@ -4,14 +4,15 @@
 # the largest acceleration of the nodes at least 6 mm (two horizons) from the free edges, as
 # |a| and as rho |a| delta / (E eps), the ghost force density in units of a strain jump of the
 # applied size across one coarse horizon.
-#   bash bench/interface/patch_test.sh [--set key=value ...]
+#   bash bench/interface/patch_test.sh [--set key=value ...]   (e.g. --set adapt.interface_fit=true)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 [[ -x build/periadapt ]] || bash scripts/build.sh
 out=$(mktemp -d); trap 'rm -rf "$out"' EXIT
 for p in source_horizon dual_horizon; do
   build/periadapt run bench/interface/uniform_strain_patch.yaml --out "$out/$p" --quiet \
-    --set solver.bond_pairing=$p "$@" > /dev/null
+    --set solver.bond_pairing=$p "$@" > /dev/null 2> "$out/$p.err" ||
+    echo "$p: $(cat "$out/$p.err")"
 done
 /usr/bin/python3 - "$out" <<'PY'
 import json, os, sys
@@ -19,6 +20,7 @@ sys.path.insert(0, os.path.join(os.getcwd(), "scripts", "agrs"))
 from vtu import read_vtu
 out = sys.argv[1]
 for p in ("source_horizon", "dual_horizon"):
+    if not os.path.exists(os.path.join(out, p, "summary.json")): continue
     f = read_vtu(os.path.join(out, p, "snapshot_00001.vtu"))
     dt = json.load(open(os.path.join(out, p, "summary.json")))["dt"]
     fine = [x for x, l in zip(f["Points"], f["refinement_level"]) if l > 0]
