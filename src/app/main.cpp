@@ -13,6 +13,7 @@
 
 #include "parallel/mpi_env.hpp"
 
+#include "run/refinement_forecast.hpp"
 #include "run/simulation.hpp"
 #include "run/sweep.hpp"
 #include "run/static_run.hpp"
@@ -184,6 +185,26 @@ int check(const std::string& path, const std::vector<std::string>& overrides,
     if (vol > 0 && vol_refined > 0.5 * vol)
       fmt::print("warning         the initial zones refine more than half of the body: a uniform "
                  "grid of the finer spacing may cost less\n");
+  }
+  if (dk.adapt.enabled && dk.adapt.stretch_fraction) {
+    // About 10 s of this machine's time at most (plain PMB runs 1e8-5e8 bonds per second).
+    constexpr double kForecastBudget = 2e9;
+    const RefinementForecast fc = forecast_refinement(dk, kForecastBudget);
+    if (!fc.ran) {
+      fmt::print("forecast        skipped: the elastic coarse run would take {:.2g} bond "
+                 "evaluations (more than {:.0e})\n", fc.bond_evaluations, kForecastBudget);
+    } else {
+      fmt::print("forecast        elastic coarse run: {} at t = {:.4g} s; by then the stretch "
+                 "trigger would have refined {} of {} refinable nodes, {:.1f}% of the body's "
+                 "volume\n",
+                 fc.initiates ? "the first bond reaches the finest level's s0"
+                              : "no bond reaches the finest level's s0 up to end_time",
+                 fc.time, fc.parents, fc.refinable, 100 * fc.volume_fraction);
+      if (fc.volume_fraction > 0.5)
+        fmt::print("warning         the run is likely to refine most of the body before a crack "
+                   "starts: a uniform grid of the finer spacing may cost less, or give "
+                   "adapt.region\n");
+    }
   }
   fmt::print("output          {}\n", dk.output.directory);
   return 0;
