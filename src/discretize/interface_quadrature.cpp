@@ -62,17 +62,30 @@ InterfaceFitStats fit_interface_quadrature(const NodeSet& ns, BondFamilies& bf,
                                            InfluenceShape shape, const std::vector<char>& rows) {
   InterfaceFitStats st;
   const int D = ns.dim;
-  std::vector<std::uint32_t> active;
-  double smax = 0;
-  for (std::size_t i = 0; i < ns.size(); ++i)
-    if (ns.flags[i] & kActive) {
-      active.push_back(static_cast<std::uint32_t>(i));
-      smax = std::max(smax, ns.spacing[i]);
-    }
-  if (active.empty()) return st;
+  std::vector<std::uint32_t> todo;
+  double smax = 0, hmax = 0, lo[3] = {INFINITY, INFINITY, INFINITY},
+         hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  for (std::size_t i = 0; i < ns.size(); ++i) {
+    if (!(ns.flags[i] & kActive)) continue;
+    smax = std::max(smax, ns.spacing[i]);
+    if (!rows.empty() && !rows[i]) continue;
+    todo.push_back(static_cast<std::uint32_t>(i));
+    hmax = std::max(hmax, ns.horizon[i]);
+    for (int d = 0; d < D; ++d) lo[d] = std::min(lo[d], ns.x[d][i]), hi[d] = std::max(hi[d], ns.x[d][i]);
+  }
+  if (todo.empty()) return st;
   // A cell covers a point within half its spacing per axis: within sqrt(D)/2 of the largest.
   const double reach = 0.5 * std::sqrt(static_cast<double>(D)) * smax * (1 + 1e-9);
-  const CellGrid grid(D, {ns.x[0].data(), ns.x[1].data(), ns.x[2].data()}, active, reach);
+  // The nodes a row's queries can meet: within its horizon and a cell of the rows' box.
+  std::vector<std::uint32_t> near;
+  for (std::size_t j = 0; j < ns.size(); ++j) {
+    if (!(ns.flags[j] & kActive)) continue;
+    bool in = true;
+    for (int d = 0; d < D && in; ++d)
+      in = ns.x[d][j] >= lo[d] - hmax - 2 * reach && ns.x[d][j] <= hi[d] + hmax + 2 * reach;
+    if (in) near.push_back(static_cast<std::uint32_t>(j));
+  }
+  const CellGrid grid(D, {ns.x[0].data(), ns.x[1].data(), ns.x[2].data()}, near, reach);
   enum Outcome : std::uint8_t { kSkip, kIncomplete, kRefused, kFitted };
   // One row; rows are independent (each scales its own bonds).
   auto fit_row = [&](std::size_t i) -> Outcome {
@@ -133,9 +146,6 @@ InterfaceFitStats fit_interface_quadrature(const NodeSet& ns, BondFamilies& bf,
       bf.beta[k] = static_cast<float>(static_cast<double>(bf.beta[k]) * factor[k - bf.begin(i)]);
     return kFitted;
   };
-  std::vector<std::uint32_t> todo;
-  for (std::size_t i = 0; i < ns.size(); ++i)
-    if ((rows.empty() || rows[i]) && (ns.flags[i] & kActive)) todo.push_back(static_cast<std::uint32_t>(i));
   std::vector<Outcome> outcome(todo.size(), kSkip);
 #pragma omp parallel for schedule(dynamic, 32)
   for (std::size_t q = 0; q < todo.size(); ++q) outcome[q] = fit_row(todo[q]);
