@@ -109,6 +109,24 @@ std::vector<T> all_gather(const std::vector<T>& mine, std::vector<int>* counts) 
   return mine;
 }
 
+template <class T>
+void all_gather_into(const std::vector<T>& mine, std::vector<T>& out) {
+#ifdef PERIADAPT_HAVE_MPI
+  if (g_active) {
+    std::vector<int> n(static_cast<std::size_t>(g_size)), at(static_cast<std::size_t>(g_size));
+    int own = static_cast<int>(mine.size());
+    MPI_Allgather(&own, 1, MPI_INT, n.data(), 1, MPI_INT, MPI_COMM_WORLD);
+    std::exclusive_scan(n.begin(), n.end(), at.begin(), 0);
+    out.resize(static_cast<std::size_t>(at.back() + n.back()));
+    MPI_Allgatherv(mine.data(), own, type_of<T>(), out.data(), n.data(), at.data(), type_of<T>(),
+                   MPI_COMM_WORLD);
+    return;
+  }
+#endif
+  out = mine;
+}
+
+template void all_gather_into(const std::vector<double>&, std::vector<double>&);
 template std::vector<double> all_gather(const std::vector<double>&, std::vector<int>*);
 template std::vector<std::uint32_t> all_gather(const std::vector<std::uint32_t>&, std::vector<int>*);
 template std::vector<std::uint64_t> all_gather(const std::vector<std::uint64_t>&, std::vector<int>*);

@@ -30,5 +30,9 @@ long max(long v);
 // Each rank's `mine` concatenated in rank order, and (counts) how many each gave.
 template <class T>
 std::vector<T> all_gather(const std::vector<T>& mine, std::vector<int>* counts = nullptr);
+// The same into `out`, whose storage is reused (a per-step exchange then neither allocates nor
+// clears its buffer).
+template <class T>
+void all_gather_into(const std::vector<T>& mine, std::vector<T>& out);
 
 }  // namespace periadapt::mpi

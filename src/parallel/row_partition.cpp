@@ -214,8 +214,9 @@ std::size_t share_force_pass(const RowPartition& p, NodeSet& ns, BondFamilies& b
   if (with_s) stretch->resize(n, -INFINITY);
   const int D = ns.dim;
   const std::size_t per_row = static_cast<std::size_t>(D) + with_w + with_s;
-  std::vector<double> values;
-  values.reserve(rows.size() * per_row);
+  // Reused from pass to pass: the exchange of every step neither allocates nor clears them.
+  static std::vector<double> values, all_values;
+  values.clear();
   for (std::uint32_t i : rows) {
     for (int d = 0; d < D; ++d) values.push_back(ns.f[static_cast<std::size_t>(d)][i]);
     if (with_w) values.push_back((*W)[i]);
@@ -223,7 +224,7 @@ std::size_t share_force_pass(const RowPartition& p, NodeSet& ns, BondFamilies& b
   }
   const std::vector<std::uint32_t> listed = full ? std::vector<std::uint32_t>{} : mpi::all_gather(rows);
   const std::vector<std::uint32_t>& all_rows = full ? p.all_owned : listed;
-  const std::vector<double> all_values = mpi::all_gather(values);
+  mpi::all_gather_into(values, all_values);
   for (std::size_t k = 0; k < all_rows.size(); ++k) {
     const std::uint32_t i = all_rows[k];
     const double* v = &all_values[k * per_row];
