@@ -148,6 +148,8 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
   } else if (opt.write_files) {
     remove_earlier_run_outputs(dir);
   }
+  // Rank 0 clears the folder before any rank writes its snapshot pieces into it.
+  if (mpi::distributed()) mpi::max(0L);
   if (!opt.quiet) {
     fmt::print("PeriAdapt: {} nodes, {} bonds ({} cut by pre-cracks), {}D {}{}, c0 = {:.4e}, "
                "s0 = {:.4e}\n",
