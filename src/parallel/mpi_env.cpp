@@ -91,26 +91,7 @@ long max(long v) {
 }
 
 template <class T>
-std::vector<T> all_gather(const std::vector<T>& mine, std::vector<int>* counts) {
-#ifdef PERIADAPT_HAVE_MPI
-  if (g_active) {
-    std::vector<int> n(static_cast<std::size_t>(g_size)), at(static_cast<std::size_t>(g_size));
-    int own = static_cast<int>(mine.size());
-    MPI_Allgather(&own, 1, MPI_INT, n.data(), 1, MPI_INT, MPI_COMM_WORLD);
-    std::exclusive_scan(n.begin(), n.end(), at.begin(), 0);
-    std::vector<T> all(static_cast<std::size_t>(at.back() + n.back()));
-    MPI_Allgatherv(mine.data(), own, type_of<T>(), all.data(), n.data(), at.data(), type_of<T>(),
-                   MPI_COMM_WORLD);
-    if (counts) *counts = std::move(n);
-    return all;
-  }
-#endif
-  if (counts) *counts = {static_cast<int>(mine.size())};
-  return mine;
-}
-
-template <class T>
-void all_gather_into(const std::vector<T>& mine, std::vector<T>& out) {
+void all_gather_into(const std::vector<T>& mine, std::vector<T>& out, std::vector<int>* counts) {
 #ifdef PERIADAPT_HAVE_MPI
   if (g_active) {
     std::vector<int> n(static_cast<std::size_t>(g_size)), at(static_cast<std::size_t>(g_size));
@@ -120,13 +101,22 @@ void all_gather_into(const std::vector<T>& mine, std::vector<T>& out) {
     out.resize(static_cast<std::size_t>(at.back() + n.back()));
     MPI_Allgatherv(mine.data(), own, type_of<T>(), out.data(), n.data(), at.data(), type_of<T>(),
                    MPI_COMM_WORLD);
+    if (counts) *counts = std::move(n);
     return;
   }
 #endif
+  if (counts) *counts = {static_cast<int>(mine.size())};
   out = mine;
 }
 
-template void all_gather_into(const std::vector<double>&, std::vector<double>&);
+template <class T>
+std::vector<T> all_gather(const std::vector<T>& mine, std::vector<int>* counts) {
+  std::vector<T> out;
+  all_gather_into(mine, out, counts);
+  return out;
+}
+
+template void all_gather_into(const std::vector<double>&, std::vector<double>&, std::vector<int>*);
 template std::vector<double> all_gather(const std::vector<double>&, std::vector<int>*);
 template std::vector<std::uint32_t> all_gather(const std::vector<std::uint32_t>&, std::vector<int>*);
 template std::vector<std::uint64_t> all_gather(const std::vector<std::uint64_t>&, std::vector<int>*);

@@ -33,6 +33,7 @@ std::vector<T> all_gather(const std::vector<T>& mine, std::vector<int>* counts =
 // The same into `out`, whose storage is reused (a per-step exchange then neither allocates nor
 // clears its buffer).
 template <class T>
-void all_gather_into(const std::vector<T>& mine, std::vector<T>& out);
+void all_gather_into(const std::vector<T>& mine, std::vector<T>& out,
+                     std::vector<int>* counts = nullptr);
 
 }  // namespace periadapt::mpi
