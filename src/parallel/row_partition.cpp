@@ -121,12 +121,19 @@ std::vector<int> zoltan_owners(const NodeSet& ns, const BondFamilies& bf, Partit
 
 namespace {
 
+// Each rank's bonds (of its active rows) under `owner`; nodes beyond `owner` or with rank -1 count
+// for none.
+std::vector<double> rank_bonds(const NodeSet& ns, const BondFamilies& bf, const std::vector<int>& owner) {
+  std::vector<double> bonds(static_cast<std::size_t>(mpi::size()), 0.0);
+  for (std::size_t i = 0; i < std::min(ns.size(), owner.size()); ++i)
+    if ((ns.flags[i] & kActive) && owner[i] >= 0)
+      bonds[static_cast<std::size_t>(owner[i])] += static_cast<double>(bf.end(i) - bf.begin(i));
+  return bonds;
+}
+
 // The largest rank's bonds over the mean under `owner`.
 double bond_imbalance(const NodeSet& ns, const BondFamilies& bf, const std::vector<int>& owner) {
-  std::vector<double> bonds(static_cast<std::size_t>(mpi::size()), 0.0);
-  for (std::size_t i = 0; i < ns.size(); ++i)
-    if (ns.flags[i] & kActive)
-      bonds[static_cast<std::size_t>(owner[i])] += static_cast<double>(bf.end(i) - bf.begin(i));
+  const std::vector<double> bonds = rank_bonds(ns, bf, owner);
   const double mean = std::accumulate(bonds.begin(), bonds.end(), 0.0) / static_cast<double>(bonds.size());
   return mean > 0 ? *std::max_element(bonds.begin(), bonds.end()) / mean : 1.0;
 }
@@ -159,11 +166,8 @@ void refresh_partition(RowPartition& p, const NodeSet& ns, const BondFamilies& b
   } else {
     // Children join their parent's rank (a node without one, the rank with the fewest bonds).
     owner = p.owner;
+    std::vector<double> load = rank_bonds(ns, bf, owner);
     owner.resize(ns.size(), -1);
-    std::vector<double> load(static_cast<std::size_t>(mpi::size()), 0.0);
-    for (std::size_t i = 0; i < p.owner.size(); ++i)
-      if (ns.flags[i] & kActive)
-        load[static_cast<std::size_t>(owner[i])] += static_cast<double>(bf.end(i) - bf.begin(i));
     for (std::size_t i = p.owner.size(); i < ns.size(); ++i) {
       const std::int32_t a = ns.parent[i];  // older than i, so it has its rank already
       owner[i] = a >= 0 ? owner[static_cast<std::size_t>(a)]
