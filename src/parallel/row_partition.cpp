@@ -220,19 +220,31 @@ std::size_t share_force_pass(const RowPartition& p, NodeSet& ns, BondFamilies& b
   const std::size_t per_row = static_cast<std::size_t>(D) + with_w + with_s;
   // Reused from pass to pass: the exchange of every step neither allocates nor clears them.
   static std::vector<double> values, all_values;
-  values.clear();
-  for (std::uint32_t i : rows) {
-    for (int d = 0; d < D; ++d) values.push_back(ns.f[static_cast<std::size_t>(d)][i]);
-    if (with_w) values.push_back((*W)[i]);
-    if (with_s) values.push_back((*stretch)[i]);
+  values.resize(rows.size() * per_row);
+  const double* f[3] = {ns.f[0].data(), ns.f[1].data(), ns.f[2].data()};
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    const std::uint32_t i = rows[k];
+    double* v = &values[k * per_row];
+    for (int d = 0; d < D; ++d) v[d] = f[d][i];
+    if (with_w) v[D] = (*W)[i];
+    if (with_s) v[D + with_w] = (*stretch)[i];
   }
   const std::vector<std::uint32_t> listed = full ? std::vector<std::uint32_t>{} : mpi::all_gather(rows);
   const std::vector<std::uint32_t>& all_rows = full ? p.all_owned : listed;
-  mpi::all_gather_into(values, all_values);
+  static std::vector<int> value_counts;
+  mpi::all_gather_into(values, all_values, &value_counts);
+  // This rank's own segment already holds these values: only the others' rows are written.
+  std::size_t own_begin = 0;
+  for (int r = 0; r < mpi::rank(); ++r) own_begin += static_cast<std::size_t>(value_counts[static_cast<std::size_t>(r)]);
+  own_begin /= per_row;
+  const std::size_t own_end = own_begin + rows.size();
+  double* fo[3] = {ns.f[0].data(), ns.f[1].data(), ns.f[2].data()};
   for (std::size_t k = 0; k < all_rows.size(); ++k) {
+    if (k == own_begin) k = own_end;
+    if (k >= all_rows.size()) break;
     const std::uint32_t i = all_rows[k];
     const double* v = &all_values[k * per_row];
-    for (int d = 0; d < D; ++d) ns.f[static_cast<std::size_t>(d)][i] = v[d];
+    for (int d = 0; d < D; ++d) fo[d][i] = v[d];
     if (with_w) (*W)[i] = v[D];
     if (with_s) (*stretch)[i] = v[D + with_w];
   }
