@@ -12,6 +12,7 @@
 
 #include "core/bond_families.hpp"
 #include "core/node_set.hpp"
+#include "material/dual_rows.hpp"
 #include "material/micromodulus.hpp"
 
 namespace periadapt {
@@ -25,6 +26,7 @@ struct BondLawCall {
   std::vector<double>* W = nullptr;                  // energy densities from the same pass
   const std::vector<std::uint32_t>* rows = nullptr;  // only these rows (others keep theirs)
   std::vector<double>* breakable_stretch = nullptr;  // stretch trigger's measure per row
+  const DualRows* split = nullptr;                   // dual form: a distributed pass's share
 };
 
 struct BondLaw {
@@ -41,7 +43,8 @@ struct BondLaw {
   // Forces (and, when asked, energy densities and the trigger's stretch) of the rows; updates
   // each bond's history (bonds.state) and breaks bonds past their breaking stretch.
   std::size_t (*forces)(NodeSet&, BondFamilies&, const BondLawCall&) = nullptr;
-  // The same in the dual-horizon form (bonds.t_* built; call.rows must be null).
+  // The same in the dual-horizon form (bonds.t_* built; call.rows must be null; call.split
+  // for a distributed pass).
   std::size_t (*dual_forces)(NodeSet&, BondFamilies&, const BondLawCall&) = nullptr;
   // Stored (recoverable) energy density of every node from the current state.
   void (*energy_density)(const NodeSet&, const BondFamilies&, const BondLawCall&,

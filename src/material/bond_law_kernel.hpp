@@ -125,6 +125,8 @@ struct BondLawKernels {
   struct DualForces {
     static std::size_t run(NodeSet& ns, BondFamilies& bf, const BondLawCall& c) {
       const std::size_t n = ns.size();
+      const DualRows split = c.split ? *c.split : DualRows{};
+      const std::size_t n_first = split.count(n, false), n_rows = split.count(n, true);
       if (bf.dual_force.size() != bf.neighbor.size()) bf.dual_force.assign(bf.neighbor.size(), 0.0);
       double* fac = bf.dual_force.data();
       double* W = nullptr;
@@ -138,7 +140,8 @@ struct BondLawKernels {
       {
         std::vector<std::pair<std::uint64_t, std::uint32_t>> mine;
 #pragma omp for schedule(dynamic, 512)
-        for (std::size_t i = 0; i < n; ++i) {
+        for (std::size_t r = 0; r < n_first; ++r) {
+          const std::size_t i = split.at(r, false);
           for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) fac[k] = 0.0;
           if (!(ns.flags[i] & kActive)) continue;
           const bool node_breaks = !(ns.flags[i] & kNoFail);
@@ -149,7 +152,7 @@ struct BondLawKernels {
             double F, phi;
             if (!respond(bf, k, node_breaks && bf.inv_length[k] > 0.0, c.allow_breaking, s, a, b,
                          F, phi)) {
-              mine.emplace_back(k, static_cast<std::uint32_t>(i));
+              if (split.breaks_here(i)) mine.emplace_back(k, static_cast<std::uint32_t>(i));
               return;
             }
             // gw = g beta V_j: the factor per unit neighbour volume is gw / V_j.
@@ -161,7 +164,8 @@ struct BondLawKernels {
           if (W) W[i] = 0.25 * ns.micromodulus[i] * sum.w;
         }
 #pragma omp for schedule(dynamic, 512)
-        for (std::size_t i = 0; i < n; ++i) {
+        for (std::size_t r = 0; r < n_rows; ++r) {
+          const std::size_t i = split.at(r, true);
           if (!(ns.flags[i] & kActive)) continue;
           double acc[3] = {ns.f[0][i], ns.f[1][i], ns.f[2][i]};
           for (std::uint64_t t = bf.t_offsets[i]; t < bf.t_offsets[i + 1]; ++t) {

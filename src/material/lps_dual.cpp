@@ -20,18 +20,21 @@ double bond_extension(const NodeSet& ns, std::size_t a, std::size_t b, double x,
 
 std::size_t lps_dual_forces(NodeSet& ns, BondFamilies& bf, InfluenceShape shape,
                             const LpsConstants& c, bool allow_breaking, LpsScratch& sc,
-                            std::vector<std::uint64_t>* log, std::vector<double>* Wout) {
+                            std::vector<std::uint64_t>* log, std::vector<double>* Wout,
+                            const DualRows& split) {
   const std::size_t n = ns.size();
+  const std::size_t n_rows = split.count(n, true);
   // 1. Breaking, each owner on its own memberships.
   // (bond, owner): after a refinement event rows are no longer stored in node order, so the
   // owner is recorded, not inferred from the bond's index.
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> newly;
+  BrokenMemberships newly;
   if (allow_breaking) {
 #pragma omp parallel
     {
-      std::vector<std::pair<std::uint64_t, std::uint32_t>> mine;
+      BrokenMemberships mine;
 #pragma omp for schedule(dynamic, 512)
-      for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t r = 0; r < n_rows; ++r) {
+        const std::size_t i = split.at(r, true);
         if (!(ns.flags[i] & kActive) || (ns.flags[i] & kNoFail)) continue;
         const double s0 = ns.critical_stretch[i];
         for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {
@@ -46,6 +49,7 @@ std::size_t lps_dual_forces(NodeSet& ns, BondFamilies& bf, InfluenceShape shape,
       newly.insert(newly.end(), mine.begin(), mine.end());
     }
     std::sort(newly.begin(), newly.end());
+    if (split.gather_breaks) split.gather_breaks(newly);
     for (const auto& [k, o] : newly) {
       ns.broken_weight[o] += static_cast<double>(bf.beta[k]) * ns.volume[bf.neighbor[k]];
       bf.beta[k] = -bf.beta[k];
@@ -64,7 +68,8 @@ std::size_t lps_dual_forces(NodeSet& ns, BondFamilies& bf, InfluenceShape shape,
     return (Dk * th * w * x + am * w * (e - th * x * invD)) / m;
   };
 #pragma omp parallel for schedule(dynamic, 512)
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t r = 0; r < n_rows; ++r) {
+    const std::size_t i = split.at(r, true);
     if (!(ns.flags[i] & kActive)) continue;
     double a[3] = {0, 0, 0};
     // Membership k of `owner`'s family between i and `other`: the owner's force state times the

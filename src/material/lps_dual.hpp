@@ -10,13 +10,17 @@
 #include <cstdint>
 #include <vector>
 
+#include "material/dual_rows.hpp"
 #include "material/lps.hpp"
 
 namespace periadapt {
 
-// Needs bonds.t_* (build_transpose). Same contract as lps_forces.
+// Needs bonds.t_* (build_transpose). Same contract as lps_forces; `split`: a distributed pass's
+// share (its rows' breaks, made every rank's by split.gather_breaks before the dilatations; the
+// forces of split.rows; every rank's breaks applied and logged here).
 std::size_t lps_dual_forces(NodeSet& nodes, BondFamilies& bonds, InfluenceShape shape,
                             const LpsConstants& c, bool allow_breaking, LpsScratch& scratch,
-                            std::vector<std::uint64_t>* broken_log, std::vector<double>* W);
+                            std::vector<std::uint64_t>* broken_log, std::vector<double>* W,
+                            const DualRows& split = {});
 
 }  // namespace periadapt

@@ -27,8 +27,10 @@ struct DualForces {
   // point at it: q V_owner (y_owner - y_i), instead of evaluating each membership a second time
   // from the bond's length, beta and the owner's horizon and micromodulus (2x faster here).
   static std::size_t run(NodeSet& ns, BondFamilies& bf, bool allow_breaking,
-                         std::vector<std::uint64_t>* log, std::vector<double>* Wout) {
+                         std::vector<std::uint64_t>* log, std::vector<double>* Wout,
+                         const DualRows& split) {
     const std::size_t n = ns.size();
+    const std::size_t n_first = split.count(n, false), n_rows = split.count(n, true);
     const DualView v{ns.cur.data(), ns.horizon.data(), ns.micromodulus.data(), bf.neighbor.data(),
                      bf.inv_length.data(), bf.beta.data()};
     const std::uint64_t* begins = bf.offsets.data();
@@ -53,7 +55,8 @@ struct DualForces {
     {
       std::vector<std::pair<std::uint64_t, std::uint32_t>> mine;
 #pragma omp for schedule(dynamic, 512)
-      for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t r = 0; r < n_first; ++r) {
+        const std::size_t i = split.at(r, false);
         if (!(flags[i] & kActive)) {
           for (std::uint64_t k = begins[i]; k < ends[i]; ++k) fac[k] = 0.0;
           continue;
@@ -75,7 +78,7 @@ struct DualForces {
           const double s = r * ail - 1.0;
           // Broken in this pass: no force either way (breaking applied after the pass).
           if (v.inv_len[k] > 0.0 && s > s0) {
-            mine.emplace_back(k, static_cast<std::uint32_t>(i));
+            if (split.breaks_here(i)) mine.emplace_back(k, static_cast<std::uint32_t>(i));
             continue;
           }
           const double g = influence_at<S>(1.0 / (ail * h));
@@ -90,7 +93,8 @@ struct DualForces {
       }
       // Reactions: every membership (o, k) pointing at i pulls i towards o with o's factor.
 #pragma omp for schedule(dynamic, 512)
-      for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t r = 0; r < n_rows; ++r) {
+        const std::size_t i = split.at(r, true);
         if (!(flags[i] & kActive)) continue;
         double a[3];
         for (int e = 0; e < D; ++e) a[e] = f[e][i];
@@ -122,8 +126,8 @@ struct DualForces {
 
 std::size_t pmb_dual_forces(NodeSet& ns, BondFamilies& bf, InfluenceShape shape,
                             bool allow_breaking, std::vector<std::uint64_t>* log,
-                            std::vector<double>* Wout) {
-  return dispatch<DualForces>(ns.dim, shape, ns, bf, allow_breaking, log, Wout);
+                            std::vector<double>* Wout, const DualRows& split) {
+  return dispatch<DualForces>(ns.dim, shape, ns, bf, allow_breaking, log, Wout, split);
 }
 
 }  // namespace periadapt

@@ -10,13 +10,15 @@
 
 #include "core/bond_families.hpp"
 #include "core/node_set.hpp"
+#include "material/dual_rows.hpp"
 #include "material/micromodulus.hpp"
 
 namespace periadapt {
 
-// Needs bonds.t_* (build_transpose). Same contract as pmb_forces.
+// Needs bonds.t_* (build_transpose). Same contract as pmb_forces; `split`: a distributed
+// pass's share (the breaks of its own rows only, applied and logged here).
 std::size_t pmb_dual_forces(NodeSet& nodes, BondFamilies& bonds, InfluenceShape shape,
                             bool allow_breaking, std::vector<std::uint64_t>* broken_log,
-                            std::vector<double>* W);
+                            std::vector<double>* W, const DualRows& split = {});
 
 }  // namespace periadapt

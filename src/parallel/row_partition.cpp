@@ -148,6 +148,7 @@ void adopt_owners(RowPartition& p, std::vector<int> owner) {
     p.owned.push_back(static_cast<std::uint32_t>(i));
     p.mine[i] = 1;
   }
+  ++p.generation;
   p.all_owned.clear();
   for (int r = 0; r < mpi::size(); ++r)
     for (std::size_t i = 0; i < p.owner.size(); ++i)
@@ -191,6 +192,18 @@ void refresh_partition(RowPartition& p, const NodeSet& ns, const BondFamilies& b
   (void)bf;
   throw std::logic_error("a distributed partition needs a build with MPI");
 #endif
+}
+
+const std::vector<std::uint32_t>& dual_first_rows(RowPartition& p, const BondFamilies& bf) {
+  if (p.dual_first_generation == p.generation) return p.dual_first;
+  std::vector<char> needed(p.mine.begin(), p.mine.end());
+  for (std::uint32_t i : p.owned)
+    for (std::uint64_t q = bf.t_offsets[i]; q < bf.t_offsets[i + 1]; ++q) needed[bf.t_owner[q]] = 1;
+  p.dual_first.clear();
+  for (std::size_t i = 0; i < needed.size(); ++i)
+    if (needed[i]) p.dual_first.push_back(static_cast<std::uint32_t>(i));
+  p.dual_first_generation = p.generation;
+  return p.dual_first;
 }
 
 std::vector<std::uint32_t> owned_rows(const RowPartition& p, const std::vector<std::uint32_t>* rows) {

@@ -37,12 +37,21 @@ struct RowPartition {
   long partitions = 0;               // how many times Zoltan made it (the first split included)
   long extensions = 0;               // refinement events absorbed without a repartition
   std::string replicated_because;    // under mpirun but not split: what every rank runs whole
+  long generation = 0;               // counts the owner assignments
+  // The dual-horizon pairing: this rank's rows and the owners of the memberships pointing at
+  // them, for the owner assignment `dual_first_generation` (dual_first_rows).
+  std::vector<std::uint32_t> dual_first;
+  long dual_first_generation = -1;
 };
 
 // When the partition is active and the nodes or bonds changed since the last call: the first
 // call splits the rows, later ones give new nodes their parent's rank and repartition when the
 // imbalance passes the threshold (collective: every rank calls it at the same point).
 void refresh_partition(RowPartition& p, const NodeSet& ns, const BondFamilies& bf);
+
+// The rows whose memberships a dual-horizon pass of this rank evaluates: its own and those of
+// the families that contain one of its nodes (bonds.t_*), ascending; kept until the owners change.
+const std::vector<std::uint32_t>& dual_first_rows(RowPartition& p, const BondFamilies& bf);
 
 // This rank's share of `rows` (all rows when null).
 std::vector<std::uint32_t> owned_rows(const RowPartition& p, const std::vector<std::uint32_t>* rows);

@@ -100,12 +100,10 @@ TimeStepChoice choose_time_step(const Deck& dk, const Model& m) {
 }
 
 
-// mpirun: the force passes split over the ranks. What the split does not cover yet (a bond of the
-// dual-horizon pairing acts on both ends, the overlay re-checks bonds across rows) runs whole on
-// every rank: the same result, no speed-up.
+// mpirun: the force passes split over the ranks. What the split does not cover yet (the overlay
+// re-checks bonds across rows) runs whole on every rank: the same result, no speed-up.
 void enable_distributed_forces(const Deck& dk, Model& m) {
-  if (m.formulation.dual_horizon) m.partition.replicated_because = "the dual-horizon pairing";
-  else if (m.pdro.enabled) m.partition.replicated_because = "the refinement overlay";
+  if (m.pdro.enabled) m.partition.replicated_because = "the refinement overlay";
   if (!m.partition.replicated_because.empty()) return;
   m.partition.active = true;
   m.partition.method = dk.partition;

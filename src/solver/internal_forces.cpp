@@ -1,5 +1,6 @@
 #include "solver/internal_forces.hpp"
 
+#include <algorithm>
 #include <bit>
 
 #include "material/contact.hpp"
@@ -61,9 +62,13 @@ std::size_t material_forces(Model& m, bool allow_breaking, std::vector<std::uint
 
 // A distributed run's pass (parallel/row_partition.hpp): this rank's share of `rows` (all rows
 // when null), then the owners share their results (forces, broken bonds, and the bond states a
-// history law changed). Source-horizon pairing.
+// history law changed). The dual-horizon pairing evaluates the memberships of its rows and of
+// the rows whose memberships point at them, and gathers its rows' forces (material/dual_rows.hpp).
 std::size_t distributed_forces(Model& m, bool allow_breaking, const std::vector<std::uint32_t>* rows,
                                std::vector<std::uint64_t>* log, std::vector<double>* W) {
+  const bool dual = m.formulation.dual_horizon;
+  // The dual pairing's forces gather memberships from other rows: a full pass only.
+  if (dual) rows = nullptr;
   refresh_partition(m.partition, m.nodes, m.bonds);
   const std::vector<std::uint32_t> mine = owned_rows(m.partition, rows);
   std::vector<std::uint64_t> broken_here;
@@ -76,14 +81,26 @@ std::size_t distributed_forces(Model& m, bool allow_breaking, const std::vector<
   // History laws: the bond states this rank's rows changed, (bond, new state), for the others.
   std::vector<std::uint64_t> changed_bonds;
   std::vector<double> changed_states;
+  DualRows split;
+  std::vector<std::uint64_t> shared_already;  // LPS dual: every rank's breaks, applied in the pass
+  if (dual) {
+    split.first = &dual_first_rows(m.partition, m.bonds);
+    split.rows = &m.partition.owned;
+    split.own = m.partition.mine.data();
+  }
   if (m.formulation.kind == Kind::HistoryLaw) {
     BondFamilies& bf = m.bonds;
     std::vector<double> before;
     for (std::uint32_t i : mine) before.insert(before.end(), bf.state.begin() + bf.begin(i),
                                                bf.state.begin() + bf.end(i));
-    BondLawCall c = law_call(m, allow_breaking, &broken_here, W, &mine);
+    BondLawCall c = law_call(m, allow_breaking, &broken_here, W, dual ? nullptr : &mine);
     c.breakable_stretch = stretch;
-    m.formulation.law->forces(m.nodes, bf, c);
+    if (dual) {
+      c.split = &split;
+      m.formulation.law->dual_forces(m.nodes, bf, c);
+    } else {
+      m.formulation.law->forces(m.nodes, bf, c);
+    }
     std::size_t at = 0;
     for (std::uint32_t i : mine)
       for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k, ++at)
@@ -91,6 +108,26 @@ std::size_t distributed_forces(Model& m, bool allow_breaking, const std::vector<
           changed_bonds.push_back(k);
           changed_states.push_back(bf.state[k]);
         }
+  } else if (m.formulation.kind == Kind::Lps && dual) {
+    // The dilatations read every bond: all ranks' breaks are applied before them, here.
+    split.gather_breaks = [](BrokenMemberships& b) {
+      std::vector<std::uint64_t> bonds;
+      std::vector<std::uint32_t> owners;
+      for (const auto& [k, o] : b) {
+        bonds.push_back(k);
+        owners.push_back(o);
+      }
+      const std::vector<std::uint64_t> all_bonds = mpi::all_gather(bonds);
+      const std::vector<std::uint32_t> all_owners = mpi::all_gather(owners);
+      b.clear();
+      for (std::size_t q = 0; q < all_bonds.size(); ++q) b.emplace_back(all_bonds[q], all_owners[q]);
+      std::sort(b.begin(), b.end());
+    };
+    lps_dual_forces(m.nodes, m.bonds, m.material.shape, m.material.lps_constants, allow_breaking,
+                    m.lps_scratch, &shared_already, W, split);
+    if (log) log->insert(log->end(), shared_already.begin(), shared_already.end());
+  } else if (dual) {
+    pmb_dual_forces(m.nodes, m.bonds, m.material.shape, allow_breaking, &broken_here, W, split);
   } else if (m.formulation.kind == Kind::Lps)
     lps_forces(m.nodes, m.bonds, m.material.shape, m.material.lps_constants, allow_breaking,
                m.lps_scratch, &broken_here, W, &m.pdro, &mine);
@@ -98,7 +135,8 @@ std::size_t distributed_forces(Model& m, bool allow_breaking, const std::vector<
     pmb_forces(m.nodes, m.bonds, m.material.shape, allow_breaking, &broken_here, W, &m.pdro,
                m.material.thermal_strain, &mine, stretch, &m.block_pairs);
   if (m.contact.enabled) add_contact_forces(m.contact, m.nodes, &mine, W);
-  const std::size_t broken = share_force_pass(m.partition, m.nodes, m.bonds,
+  const std::size_t broken = shared_already.size() +
+                             share_force_pass(m.partition, m.nodes, m.bonds,
                                               rows ? mine : m.partition.owned, broken_here, log, W,
                                               stretch);
   if (m.formulation.kind == Kind::HistoryLaw) {
