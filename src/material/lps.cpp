@@ -35,9 +35,13 @@ inline double omega(double t) {
 
 // Pass 1: weighted volume (all bonds) and dilatation (intact bonds) of every active node, and
 // the packed per-node factors of the force pass. Branch-free inner loop (vectorizes).
+// `rows`: these nodes' only (a distributed pass's rows and their neighbours); the others keep 0.
 template <int D, InfluenceShape S, bool Mutual>
-void dilatation(const NodeSet& ns, const BondFamilies& bf, const LpsConstants& c, LpsScratch& sc) {
+void dilatation(const NodeSet& ns, const BondFamilies& bf, const LpsConstants& c, LpsScratch& sc,
+                const std::vector<std::uint32_t>* rows) {
   const std::size_t n = ns.size();
+  const std::size_t n_rows = rows ? rows->size() : n;
+  const std::uint32_t* row = rows ? rows->data() : nullptr;
   sc.m.assign(n, 0.0);
   sc.theta.assign(n, 0.0);
   sc.packed.assign(4 * n, 0.0);
@@ -59,7 +63,8 @@ void dilatation(const NodeSet& ns, const BondFamilies& bf, const LpsConstants& c
   const double* reach = sc.reach.data();
   const double* yp = ns.cur.data();
 #pragma omp parallel for schedule(dynamic, 512)
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t r = 0; r < n_rows; ++r) {
+    const std::size_t i = row ? row[r] : r;
     if (!(ns.flags[i] & kActive)) continue;
     const double inv_delta = 1.0 / ns.horizon[i];
     const double yi0 = yp[4 * i], yi1 = D > 1 ? yp[4 * i + 1] : 0.0, yi2 = D > 2 ? yp[4 * i + 2] : 0.0;
@@ -92,8 +97,9 @@ void dilatation(const NodeSet& ns, const BondFamilies& bf, const LpsConstants& c
 template <int D, InfluenceShape S, bool E, bool B>
 std::size_t forces(NodeSet& ns, BondFamilies& bf, const LpsConstants& c, bool allow_breaking,
                    LpsScratch& sc, std::vector<std::uint64_t>* log, double* W, const PdroSpec* pdro,
-                   const std::vector<std::uint32_t>* rows) {
-  dilatation<D, S, true>(ns, bf, c, sc);
+                   const std::vector<std::uint32_t>* rows,
+                   const std::vector<std::uint32_t>* dilatation_rows) {
+  dilatation<D, S, true>(ns, bf, c, sc, dilatation_rows);
   const std::size_t n = rows ? rows->size() : ns.size();
   const std::uint32_t* row = rows ? rows->data() : nullptr;
   const double* yp = ns.cur.data();
@@ -196,27 +202,29 @@ std::size_t forces(NodeSet& ns, BondFamilies& bf, const LpsConstants& c, bool al
 template <int D, bool E, bool B>
 std::size_t forces_shape(InfluenceShape s, NodeSet& ns, BondFamilies& bf, const LpsConstants& c,
                          bool brk, LpsScratch& sc, std::vector<std::uint64_t>* log, double* W,
-                         const PdroSpec* pdro, const std::vector<std::uint32_t>* rows) {
+                         const PdroSpec* pdro, const std::vector<std::uint32_t>* rows,
+                         const std::vector<std::uint32_t>* dr) {
   switch (s) {
     case InfluenceShape::Constant:
-      return forces<D, InfluenceShape::Constant, E, B>(ns, bf, c, brk, sc, log, W, pdro, rows);
+      return forces<D, InfluenceShape::Constant, E, B>(ns, bf, c, brk, sc, log, W, pdro, rows, dr);
     case InfluenceShape::Triangular:
-      return forces<D, InfluenceShape::Triangular, E, B>(ns, bf, c, brk, sc, log, W, pdro, rows);
+      return forces<D, InfluenceShape::Triangular, E, B>(ns, bf, c, brk, sc, log, W, pdro, rows, dr);
     default:
       return forces<D, InfluenceShape::InvertedTriangular, E, B>(ns, bf, c, brk, sc, log, W, pdro,
-                                                                 rows);
+                                                                 rows, dr);
   }
 }
 
 template <bool E>
 std::size_t forces_dim(InfluenceShape s, NodeSet& ns, BondFamilies& bf, const LpsConstants& c,
                        bool brk, LpsScratch& sc, std::vector<std::uint64_t>* log, double* W,
-                       const PdroSpec* pdro, const std::vector<std::uint32_t>* rows) {
+                       const PdroSpec* pdro, const std::vector<std::uint32_t>* rows,
+                       const std::vector<std::uint32_t>* dr) {
   if (!sc.block_constants.empty())
-    return ns.dim == 3 ? forces_shape<3, E, true>(s, ns, bf, c, brk, sc, log, W, pdro, rows)
-                       : forces_shape<2, E, true>(s, ns, bf, c, brk, sc, log, W, pdro, rows);
-  return ns.dim == 3 ? forces_shape<3, E, false>(s, ns, bf, c, brk, sc, log, W, pdro, rows)
-                     : forces_shape<2, E, false>(s, ns, bf, c, brk, sc, log, W, pdro, rows);
+    return ns.dim == 3 ? forces_shape<3, E, true>(s, ns, bf, c, brk, sc, log, W, pdro, rows, dr)
+                       : forces_shape<2, E, true>(s, ns, bf, c, brk, sc, log, W, pdro, rows, dr);
+  return ns.dim == 3 ? forces_shape<3, E, false>(s, ns, bf, c, brk, sc, log, W, pdro, rows, dr)
+                     : forces_shape<2, E, false>(s, ns, bf, c, brk, sc, log, W, pdro, rows, dr);
 }
 
 }  // namespace
@@ -224,15 +232,18 @@ std::size_t forces_dim(InfluenceShape s, NodeSet& ns, BondFamilies& bf, const Lp
 std::size_t lps_forces(NodeSet& ns, BondFamilies& bf, InfluenceShape shape, const LpsConstants& c,
                        bool allow_breaking, LpsScratch& sc, std::vector<std::uint64_t>* log,
                        std::vector<double>* Wout, const PdroSpec* pdro,
-                       const std::vector<std::uint32_t>* rows) {
+                       const std::vector<std::uint32_t>* rows,
+                       const std::vector<std::uint32_t>* dilatation_rows) {
   if (pdro && !pdro->enabled) pdro = nullptr;
   if (pdro && allow_breaking && pdro->interpolation == PdroInterpolation::Pim)
     pdro->visible_beta->assign(bf.beta.begin(), bf.beta.end());
   if (Wout) {
     Wout->assign(ns.size(), 0.0);
-    return forces_dim<true>(shape, ns, bf, c, allow_breaking, sc, log, Wout->data(), pdro, rows);
+    return forces_dim<true>(shape, ns, bf, c, allow_breaking, sc, log, Wout->data(), pdro, rows,
+                            dilatation_rows);
   }
-  return forces_dim<false>(shape, ns, bf, c, allow_breaking, sc, log, nullptr, pdro, rows);
+  return forces_dim<false>(shape, ns, bf, c, allow_breaking, sc, log, nullptr, pdro, rows,
+                           dilatation_rows);
 }
 
 namespace {
@@ -282,8 +293,8 @@ struct DilatationOp {
   template <int D, InfluenceShape S>
   struct Op {
     static void run(const NodeSet& ns, const BondFamilies& bf, const LpsConstants& c,
-                    LpsScratch& sc) {
-      dilatation<D, S, Mutual>(ns, bf, c, sc);
+                    LpsScratch& sc, const std::vector<std::uint32_t>* rows) {
+      dilatation<D, S, Mutual>(ns, bf, c, sc, rows);
     }
   };
 };
@@ -301,17 +312,18 @@ struct EnergyOp {
 }  // namespace
 
 void lps_dilatation(const NodeSet& ns, const BondFamilies& bf, InfluenceShape shape,
-                    const LpsConstants& c, LpsScratch& sc, bool mutual_only) {
+                    const LpsConstants& c, LpsScratch& sc, bool mutual_only,
+                    const std::vector<std::uint32_t>* rows) {
   if (mutual_only)
-    by_dim_shape<DilatationOp<true>::Op>(ns.dim, shape, ns, bf, c, sc);
+    by_dim_shape<DilatationOp<true>::Op>(ns.dim, shape, ns, bf, c, sc, rows);
   else
-    by_dim_shape<DilatationOp<false>::Op>(ns.dim, shape, ns, bf, c, sc);
+    by_dim_shape<DilatationOp<false>::Op>(ns.dim, shape, ns, bf, c, sc, rows);
 }
 
 void lps_energy_density(const NodeSet& ns, const BondFamilies& bf, InfluenceShape shape,
                         const LpsConstants& c, LpsScratch& sc, std::vector<double>& W,
-                        bool mutual_only) {
-  lps_dilatation(ns, bf, shape, c, sc, mutual_only);
+                        bool mutual_only, const std::vector<std::uint32_t>* rows) {
+  lps_dilatation(ns, bf, shape, c, sc, mutual_only, rows);
   if (mutual_only)
     by_dim_shape<EnergyOp<true>::Op>(ns.dim, shape, ns, bf, c, sc, W);
   else
@@ -321,7 +333,7 @@ void lps_energy_density(const NodeSet& ns, const BondFamilies& bf, InfluenceShap
 void lps_stress(const NodeSet& ns, const BondFamilies& bf, InfluenceShape shape,
                 const LpsConstants& c, LpsScratch& sc, std::vector<double>& sigma,
                 bool mutual_only) {
-  lps_dilatation(ns, bf, shape, c, sc, mutual_only);
+  lps_dilatation(ns, bf, shape, c, sc, mutual_only, nullptr);
   const std::size_t n = ns.size();
   sigma.assign(9 * n, 0.0);
 #pragma omp parallel for schedule(dynamic, 256)

@@ -64,24 +64,27 @@ inline const LpsConstants& node_constants(const LpsConstants& c, const LpsScratc
 }
 
 // Force densities (and bond breaking, broken-bond log, energy density, refinement overlay as
-// for PMB). `rows`: the forces (and W) of these nodes only, from every node's dilatation (W of
-// the others is 0).
+// for PMB). `rows`: the forces (and W) of these nodes only (W of the others is 0), from the
+// dilatations of `dilatation_rows` (null: every node; it must hold `rows` and their neighbours).
 std::size_t lps_forces(NodeSet& nodes, BondFamilies& bonds, InfluenceShape shape,
                        const LpsConstants& c, bool allow_breaking, LpsScratch& scratch,
                        std::vector<std::uint64_t>* broken_log, std::vector<double>* W,
                        const PdroSpec* pdro = nullptr,
-                       const std::vector<std::uint32_t>* rows = nullptr);
+                       const std::vector<std::uint32_t>* rows = nullptr,
+                       const std::vector<std::uint32_t>* dilatation_rows = nullptr);
 
 // Weighted volume and dilatation of every active node into `scratch` (the first pass).
 // `mutual_only`: over the mutual bonds, as the plain kernel's states (above); false: over whole
-// families (the dual-horizon form).
+// families (the dual-horizon form). `rows`: these nodes' only (the others keep 0).
 void lps_dilatation(const NodeSet& nodes, const BondFamilies& bonds, InfluenceShape shape,
-                    const LpsConstants& c, LpsScratch& scratch, bool mutual_only);
+                    const LpsConstants& c, LpsScratch& scratch, bool mutual_only,
+                    const std::vector<std::uint32_t>* rows = nullptr);
 
 // Strain-energy density W_i = kappa theta^2 / 2 + (alpha mu / (2 m)) sum w (e^d)^2 beta V.
+// `rows`: these nodes' only (the others get 0).
 void lps_energy_density(const NodeSet& nodes, const BondFamilies& bonds, InfluenceShape shape,
                         const LpsConstants& c, LpsScratch& scratch, std::vector<double>& W,
-                        bool mutual_only);
+                        bool mutual_only, const std::vector<std::uint32_t>* rows = nullptr);
 
 // Stress of every node, sigma_i = dW_i / d(eps) = sum_j t_ij e_ij (x) xi_ij beta V_j over the
 // intact bonds of its state (the classical stress of a homogeneous strain where W_i is

@@ -57,8 +57,9 @@ std::size_t lps_dual_forces(NodeSet& ns, BondFamilies& bf, InfluenceShape shape,
     }
   }
   // 2. Weighted volumes and dilatations (the plain kernel's first pass).
-  if (Wout) lps_energy_density(ns, bf, shape, c, sc, *Wout, false);  // with the dilatation pass
-  else lps_dilatation(ns, bf, shape, c, sc, false);
+  // A distributed pass needs the states of its rows and of the owners of their dual memberships.
+  if (Wout) lps_energy_density(ns, bf, shape, c, sc, *Wout, false, split.first);
+  else lps_dilatation(ns, bf, shape, c, sc, false, split.first);
   // 3. Forces: own memberships with i's state, dual memberships with the owner's state.
   const double Dk = c.D * c.kappa, am = c.alpha * c.mu, invD = 1.0 / c.D;
   auto t_state = [&](std::size_t owner, double x, double e) {

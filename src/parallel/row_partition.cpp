@@ -194,16 +194,20 @@ void refresh_partition(RowPartition& p, const NodeSet& ns, const BondFamilies& b
 #endif
 }
 
-const std::vector<std::uint32_t>& dual_first_rows(RowPartition& p, const BondFamilies& bf) {
-  if (p.dual_first_generation == p.generation) return p.dual_first;
+const std::vector<std::uint32_t>& rows_around(RowPartition& p, const BondFamilies& bf, bool transpose) {
+  if (p.around_generation == p.generation) return p.around;
   std::vector<char> needed(p.mine.begin(), p.mine.end());
-  for (std::uint32_t i : p.owned)
-    for (std::uint64_t q = bf.t_offsets[i]; q < bf.t_offsets[i + 1]; ++q) needed[bf.t_owner[q]] = 1;
-  p.dual_first.clear();
+  for (std::uint32_t i : p.owned) {
+    if (transpose)
+      for (std::uint64_t q = bf.t_offsets[i]; q < bf.t_offsets[i + 1]; ++q) needed[bf.t_owner[q]] = 1;
+    else
+      for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) needed[bf.neighbor[k]] = 1;
+  }
+  p.around.clear();
   for (std::size_t i = 0; i < needed.size(); ++i)
-    if (needed[i]) p.dual_first.push_back(static_cast<std::uint32_t>(i));
-  p.dual_first_generation = p.generation;
-  return p.dual_first;
+    if (needed[i]) p.around.push_back(static_cast<std::uint32_t>(i));
+  p.around_generation = p.generation;
+  return p.around;
 }
 
 std::vector<std::uint32_t> owned_rows(const RowPartition& p, const std::vector<std::uint32_t>* rows) {

@@ -38,10 +38,10 @@ struct RowPartition {
   long extensions = 0;               // refinement events absorbed without a repartition
   std::string replicated_because;    // under mpirun but not split: what every rank runs whole
   long generation = 0;               // counts the owner assignments
-  // The dual-horizon pairing: this rank's rows and the owners of the memberships pointing at
-  // them, for the owner assignment `dual_first_generation` (dual_first_rows).
-  std::vector<std::uint32_t> dual_first;
-  long dual_first_generation = -1;
+  // This rank's rows and the rows around them, for the owner assignment `around_generation`
+  // (rows_around).
+  std::vector<std::uint32_t> around;
+  long around_generation = -1;
 };
 
 // When the partition is active and the nodes or bonds changed since the last call: the first
@@ -49,9 +49,11 @@ struct RowPartition {
 // imbalance passes the threshold (collective: every rank calls it at the same point).
 void refresh_partition(RowPartition& p, const NodeSet& ns, const BondFamilies& bf);
 
-// The rows whose memberships a dual-horizon pass of this rank evaluates: its own and those of
-// the families that contain one of its nodes (bonds.t_*), ascending; kept until the owners change.
-const std::vector<std::uint32_t>& dual_first_rows(RowPartition& p, const BondFamilies& bf);
+// This rank's rows and the rows around them, ascending, kept until the owners change: with
+// `transpose`, the owners of the families that contain one of its nodes (bonds.t_*: whose
+// memberships a dual-horizon pass evaluates); otherwise its rows' neighbours (whose LPS
+// dilatations its forces read).
+const std::vector<std::uint32_t>& rows_around(RowPartition& p, const BondFamilies& bf, bool transpose);
 
 // This rank's share of `rows` (all rows when null).
 std::vector<std::uint32_t> owned_rows(const RowPartition& p, const std::vector<std::uint32_t>* rows);

@@ -84,7 +84,7 @@ std::size_t distributed_forces(Model& m, bool allow_breaking, const std::vector<
   DualRows split;
   std::vector<std::uint64_t> shared_already;  // LPS dual: every rank's breaks, applied in the pass
   if (dual) {
-    split.first = &dual_first_rows(m.partition, m.bonds);
+    split.first = &rows_around(m.partition, m.bonds, true);
     split.rows = &m.partition.owned;
     split.own = m.partition.mine.data();
   }
@@ -130,7 +130,8 @@ std::size_t distributed_forces(Model& m, bool allow_breaking, const std::vector<
     pmb_dual_forces(m.nodes, m.bonds, m.material.shape, allow_breaking, &broken_here, W, split);
   } else if (m.formulation.kind == Kind::Lps)
     lps_forces(m.nodes, m.bonds, m.material.shape, m.material.lps_constants, allow_breaking,
-               m.lps_scratch, &broken_here, W, &m.pdro, &mine);
+               m.lps_scratch, &broken_here, W, &m.pdro, &mine,
+               &rows_around(m.partition, m.bonds, false));
   else
     pmb_forces(m.nodes, m.bonds, m.material.shape, allow_breaking, &broken_here, W, &m.pdro,
                m.material.thermal_strain, &mine, stretch, &m.block_pairs);
