@@ -36,7 +36,6 @@ struct RowPartition {
   double imbalance = 1.0;            // largest rank's bonds over the mean
   long partitions = 0;               // how many times Zoltan made it (the first split included)
   long extensions = 0;               // refinement events absorbed without a repartition
-  std::string replicated_because;    // under mpirun but not split: what every rank runs whole
   long generation = 0;               // counts the owner assignments
   // This rank's rows and the rows around them, for the owner assignment `around_generation`
   // (rows_around).

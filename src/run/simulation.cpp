@@ -100,11 +100,8 @@ TimeStepChoice choose_time_step(const Deck& dk, const Model& m) {
 }
 
 
-// mpirun: the force passes split over the ranks. What the split does not cover yet (the overlay
-// re-checks bonds across rows) runs whole on every rank: the same result, no speed-up.
+// mpirun: the force passes split over the ranks.
 void enable_distributed_forces(const Deck& dk, Model& m) {
-  if (m.pdro.enabled) m.partition.replicated_because = "the refinement overlay";
-  if (!m.partition.replicated_because.empty()) return;
   m.partition.active = true;
   m.partition.method = dk.partition;
   m.partition.rebalance_threshold = dk.rebalance_threshold;
@@ -121,9 +118,6 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
   const NodeSet& ns = m.nodes;
   if (mpi::distributed()) {
     enable_distributed_forces(dk, m);
-    if (!m.partition.replicated_because.empty() && !opt.quiet)
-      fmt::print("note: {} runs whole on every rank under mpirun (the same result as one rank, "
-                 "no speed-up)\n", m.partition.replicated_because);
   }
 
   const std::string dir = opt.out_dir ? *opt.out_dir : dk.output.directory;

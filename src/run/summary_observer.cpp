@@ -63,10 +63,6 @@ void SummaryObserver::finish(RunView& view, RunResult& res) {
   j["dt_stable"] = tot.dt_stable;
   j["end_time_s"] = vv.time();
   j["threads"] = omp_get_max_threads();
-  if (mpi::distributed() && !m.partition.active)
-    j["ranks"] = {{"count", mpi::size()},
-                  {"partition", "replicated"},
-                  {"replicated_because", m.partition.replicated_because}};
   if (m.partition.active)
     j["ranks"] = {{"count", mpi::size()},
                   {"partition", m.partition.method == PartitionMethod::Rcb ? "rcb" : "hsfc"},

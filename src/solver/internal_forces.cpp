@@ -81,6 +81,9 @@ std::size_t distributed_forces(Model& m, bool allow_breaking, const std::vector<
   // History laws: the bond states this rank's rows changed, (bond, new state), for the others.
   std::vector<std::uint64_t> changed_bonds;
   std::vector<double> changed_states;
+  // The overlay counts its checks per rank: every rank keeps the totals.
+  const std::uint64_t checks_before = m.pdro.enabled ? m.pdro.counters->checks.load() : 0;
+  const std::uint64_t breaks_before = m.pdro.enabled ? m.pdro.counters->breaks.load() : 0;
   DualRows split;
   std::vector<std::uint64_t> shared_already;  // LPS dual: every rank's breaks, applied in the pass
   if (dual) {
@@ -136,6 +139,17 @@ std::size_t distributed_forces(Model& m, bool allow_breaking, const std::vector<
     pmb_forces(m.nodes, m.bonds, m.material.shape, allow_breaking, &broken_here, W, &m.pdro,
                m.material.thermal_strain, &mine, stretch, &m.block_pairs);
   if (m.contact.enabled) add_contact_forces(m.contact, m.nodes, &mine, W);
+  if (m.pdro.enabled) {
+    const std::vector<std::uint64_t> counts = mpi::all_gather(std::vector<std::uint64_t>{
+        m.pdro.counters->checks.load() - checks_before, m.pdro.counters->breaks.load() - breaks_before});
+    std::uint64_t checks = checks_before, breaks = breaks_before;
+    for (std::size_t r = 0; r + 1 < counts.size(); r += 2) {
+      checks += counts[r];
+      breaks += counts[r + 1];
+    }
+    m.pdro.counters->checks = checks;
+    m.pdro.counters->breaks = breaks;
+  }
   const std::size_t broken = shared_already.size() +
                              share_force_pass(m.partition, m.nodes, m.bonds,
                                               rows ? mine : m.partition.owned, broken_here, log, W,
