@@ -15,6 +15,7 @@
 #include "run/snapshot_fields.hpp"
 #include "input/deck_error.hpp"
 #include "io/vtu_writer.hpp"
+#include "parallel/mpi_env.hpp"
 #include "setup/build_model.hpp"
 #include "solver/dynamic_relaxation.hpp"
 
@@ -26,6 +27,8 @@ RunResult run_relaxation(const Deck& dk, const RunOptions& opt) {
   RunResult res;
   Model& m = res.model;
   m = build_model(dk);
+  // Every rank relaxes the whole model alike; the force passes are split.
+  if (mpi::distributed()) enable_distributed_forces(dk, m);
   const NodeSet& ns = m.nodes;
   const std::string dir = opt.out_dir ? *opt.out_dir : dk.output.directory;
   std::unique_ptr<VtuSeries> vtu;

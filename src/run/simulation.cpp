@@ -100,7 +100,6 @@ TimeStepChoice choose_time_step(const Deck& dk, const Model& m) {
 }
 
 
-// mpirun: the force passes split over the ranks.
 void enable_distributed_forces(const Deck& dk, Model& m) {
   m.partition.active = true;
   m.partition.method = dk.partition;

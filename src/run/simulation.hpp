@@ -36,6 +36,10 @@ struct TimeStepChoice {
 };
 TimeStepChoice choose_time_step(const Deck& deck, const Model& model);
 
+// mpirun: splits the model's force passes over the ranks (parallel/row_partition.hpp), with the
+// deck's partition method and rebalance threshold.
+void enable_distributed_forces(const Deck& deck, Model& model);
+
 RunResult run_simulation(const Deck& deck, const RunOptions& opt);
 
 }  // namespace periadapt
