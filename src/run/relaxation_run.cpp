@@ -13,6 +13,7 @@
 #include "run/resultants.hpp"
 #include "run/output_regions.hpp"
 #include "run/snapshot_fields.hpp"
+#include "run/summary_observer.hpp"
 #include "input/deck_error.hpp"
 #include "io/vtu_writer.hpp"
 #include "parallel/mpi_env.hpp"
@@ -85,6 +86,7 @@ RunResult run_relaxation(const Deck& dk, const RunOptions& opt) {
   j["nodes"] = {{"initial", ns.size()}, {"final", ns.size()}};
   j["bonds"] = m.bonds.num_bonds();
   j["broken_bonds"] = broken;
+  if (m.partition.active) j["ranks"] = ranks_json(m.partition);
   j["resultants"] = resultants_json(m, applied, reaction);
   if (!dk.output.regions.empty()) {
     strain_energy(m, W);

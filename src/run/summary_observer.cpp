@@ -12,6 +12,15 @@
 
 namespace periadapt {
 
+nlohmann::json ranks_json(const RowPartition& p) {
+  return {{"count", mpi::size()},
+          {"partition", p.method == PartitionMethod::Rcb ? "rcb" : "hsfc"},
+          {"partitions_made", p.partitions},
+          {"events_kept_partition", p.extensions},
+          {"rebalance_threshold", p.rebalance_threshold},
+          {"bond_imbalance", p.imbalance}};
+}
+
 SummaryObserver::SummaryObserver(const RunView& view) : initial_nodes_(view.model.nodes.size()) {}
 
 void SummaryObserver::save(ArchiveWriter& w) {
@@ -63,13 +72,7 @@ void SummaryObserver::finish(RunView& view, RunResult& res) {
   j["dt_stable"] = tot.dt_stable;
   j["end_time_s"] = vv.time();
   j["threads"] = omp_get_max_threads();
-  if (m.partition.active)
-    j["ranks"] = {{"count", mpi::size()},
-                  {"partition", m.partition.method == PartitionMethod::Rcb ? "rcb" : "hsfc"},
-                  {"partitions_made", m.partition.partitions},
-                  {"events_kept_partition", m.partition.extensions},
-                  {"rebalance_threshold", m.partition.rebalance_threshold},
-                  {"bond_imbalance", m.partition.imbalance}};
+  if (m.partition.active) j["ranks"] = ranks_json(m.partition);
   j["setup_time_s"] = tot.setup_s;
   j["solver_time_s"] = tot.solver_s;
   // Inside the run loop, besides the solver: sampling the history (energies, damage, crack tip)

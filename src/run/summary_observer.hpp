@@ -1,9 +1,16 @@
 #pragma once
 // summary.json: the run's status, counts, time step, timings, memory, material and grid, with
 // what the other observers added to it; written last, atomically.
+#include <nlohmann/json.hpp>
+
+#include "parallel/row_partition.hpp"
 #include "run/observer.hpp"
 
 namespace periadapt {
+
+// summary.json's `ranks` of a distributed run: rank count, partition method, partitions made,
+// events that kept the partition, the rebalance threshold and the final bond imbalance.
+nlohmann::json ranks_json(const RowPartition& p);
 
 class SummaryObserver : public RunObserver {
  public:
