@@ -195,7 +195,7 @@ void refresh_partition(RowPartition& p, const NodeSet& ns, const BondFamilies& b
 }
 
 const std::vector<std::uint32_t>& rows_around(RowPartition& p, const BondFamilies& bf, bool transpose) {
-  if (p.around_generation == p.generation) return p.around;
+  if (p.around_generation == p.generation && p.around_transpose == transpose) return p.around;
   std::vector<char> needed(p.mine.begin(), p.mine.end());
   for (std::uint32_t i : p.owned) {
     if (transpose)
@@ -207,6 +207,7 @@ const std::vector<std::uint32_t>& rows_around(RowPartition& p, const BondFamilie
   for (std::size_t i = 0; i < needed.size(); ++i)
     if (needed[i]) p.around.push_back(static_cast<std::uint32_t>(i));
   p.around_generation = p.generation;
+  p.around_transpose = transpose;
   return p.around;
 }
 
@@ -238,7 +239,7 @@ std::size_t share_force_pass(const RowPartition& p, NodeSet& ns, BondFamilies& b
   // Reused from pass to pass: the exchange of every step neither allocates nor clears them.
   static std::vector<double> values, all_values;
   values.resize(rows.size() * per_row);
-  const double* f[3] = {ns.f[0].data(), ns.f[1].data(), ns.f[2].data()};
+  double* f[3] = {ns.f[0].data(), ns.f[1].data(), ns.f[2].data()};
   for (std::size_t k = 0; k < rows.size(); ++k) {
     const std::uint32_t i = rows[k];
     double* v = &values[k * per_row];
@@ -255,13 +256,12 @@ std::size_t share_force_pass(const RowPartition& p, NodeSet& ns, BondFamilies& b
   for (int r = 0; r < mpi::rank(); ++r) own_begin += static_cast<std::size_t>(value_counts[static_cast<std::size_t>(r)]);
   own_begin /= per_row;
   const std::size_t own_end = own_begin + rows.size();
-  double* fo[3] = {ns.f[0].data(), ns.f[1].data(), ns.f[2].data()};
   for (std::size_t k = 0; k < all_rows.size(); ++k) {
     if (k == own_begin) k = own_end;
     if (k >= all_rows.size()) break;
     const std::uint32_t i = all_rows[k];
     const double* v = &all_values[k * per_row];
-    for (int d = 0; d < D; ++d) fo[d][i] = v[d];
+    for (int d = 0; d < D; ++d) f[d][i] = v[d];
     if (with_w) (*W)[i] = v[D];
     if (with_s) (*stretch)[i] = v[D + with_w];
   }

@@ -38,9 +38,10 @@ struct RowPartition {
   long extensions = 0;               // refinement events absorbed without a repartition
   long generation = 0;               // counts the owner assignments
   // This rank's rows and the rows around them, for the owner assignment `around_generation`
-  // (rows_around).
+  // and the kind `around_transpose` (rows_around).
   std::vector<std::uint32_t> around;
   long around_generation = -1;
+  bool around_transpose = false;
 };
 
 // When the partition is active and the nodes or bonds changed since the last call: the first
