@@ -12,6 +12,7 @@
 #include "adapt/refine.hpp"
 #include "analysis/energy.hpp"
 #include "input/deck_builder.hpp"
+#include "material/force_model.hpp"
 #include "setup/build_model.hpp"
 #include "run/simulation.hpp"
 #include "solver/internal_forces.hpp"
@@ -264,7 +265,7 @@ TEST(Blocks, RefinedNodesCarryTheirBlocksLaw) {
       EXPECT_EQ(ns.block[i], ns.x[0][i] > 0.02 ? 1 : 0) << i;
       const double c0 = micromodulus_c0(2, l.plane, l.shape, l.bb_equivalent_E, ns.horizon[i], l.thickness);
       EXPECT_NEAR(ns.micromodulus[i] / c0, 1.0, 1e-12) << law << " " << i;
-      EXPECT_NEAR(ns.critical_stretch[i] / breaking_stretch(m, l, c0, ns.horizon[i]), 1.0, 1e-12);
+      EXPECT_NEAR(ns.critical_stretch[i] / breaking_stretch(m.formulation, ns.dim, l, c0, ns.horizon[i]), 1.0, 1e-12);
       EXPECT_EQ(ns.density[i], l.rho);
       ++checked[ns.block[i]][ns.level[i]];
     }

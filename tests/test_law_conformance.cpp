@@ -4,7 +4,9 @@
 //  - energy density of a homogeneous isotropic expansion of the elastic branch equals the
 //    classical value at interior nodes (sub-cell quadrature, 2% at m = 3);
 //  - a homogeneous deformation leaves interior nodes without force;
-//  - thread independence: 1 and 2 threads give the same forces and histories bit for bit.
+//  - thread independence: 1 and 2 threads give the same forces and histories bit for bit;
+//  - the energy density of some rows (multi-rate's idle rows) is the whole field's there, bit for
+//    bit, and leaves the other rows' values alone.
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -15,6 +17,7 @@
 
 #include "input/deck_builder.hpp"
 #include "material/bond_law.hpp"
+#include "material/force_model.hpp"
 #include "setup/build_model.hpp"
 #include "solver/internal_forces.hpp"
 #include "test_helpers.hpp"
@@ -155,6 +158,31 @@ TEST_P(Conformance, ThreadCountChangesNoBit) {
   const std::vector<double> one = run(1), two = run(2);
   ASSERT_EQ(one.size(), two.size());
   for (std::size_t k = 0; k < one.size(); ++k) ASSERT_EQ(one[k], two[k]) << c.formulation << " entry " << k;
+}
+
+TEST_P(Conformance, EnergyOfSomeRowsIsTheWholeFieldsThere) {
+  const auto& [c, dim] = GetParam();
+  Model m = block(c, dim, dim == 3 ? 8 : 14);
+  // Past onsets and some breaking stretches, so that histories and broken bonds take part.
+  random_deformation(m.nodes, 4e-6, 21);
+  internal_forces(m, true);
+  random_deformation(m.nodes, 2e-6, 22);
+  internal_forces(m, true);
+  std::vector<double> whole;
+  material_energy_density(m.nodes, m.bonds, material_context(m), whole);
+  const std::size_t n = m.nodes.size();
+  std::vector<std::uint32_t> rows;
+  for (std::size_t i = 0; i < n; i += 3) rows.push_back(static_cast<std::uint32_t>(i));
+  std::vector<double> part(n, -1.0);  // a value no density takes
+  material_energy_density(m.nodes, m.bonds, material_context(m), part, &rows);
+  ASSERT_EQ(part.size(), n);
+  double largest = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    largest = std::max(largest, whole[i]);
+    if (i % 3 == 0) ASSERT_EQ(part[i], whole[i]) << c.formulation << " row " << i;
+    else ASSERT_EQ(part[i], -1.0) << c.formulation << " row " << i << " was not asked for";
+  }
+  EXPECT_GT(largest, 0.0);
 }
 
 std::string case_name(const ::testing::TestParamInfo<std::tuple<LawCase, int>>& p) {

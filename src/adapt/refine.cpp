@@ -11,6 +11,7 @@
 #include "core/geometry.hpp"
 #include "discretize/lattice_moment.hpp"
 #include "discretize/surface_correction.hpp"
+#include "material/force_model.hpp"
 #include "material/micromodulus.hpp"
 
 namespace periadapt {
@@ -23,29 +24,6 @@ double level_horizon(const Model& m, const AdaptSpec& spec, int level) {
     case HorizonScaling::DeltaM: return spec.m_per_level.at(static_cast<std::size_t>(level)) * h;
   }
   return m.horizon;
-}
-
-double brittle_critical_stretch(const Model& m, const MaterialLaw& mat, double c0, double delta) {
-  return m.formulation.state_based()
-             ? lps_critical_stretch(m.nodes.dim, mat.lps_constants, delta, mat.G0)
-             : critical_stretch_from_g0(m.nodes.dim, mat.shape, c0, delta, mat.thickness, mat.G0);
-}
-
-double brittle_critical_stretch(const Model& m, double c0, double delta) {
-  return brittle_critical_stretch(m, m.material, c0, delta);
-}
-
-double breaking_stretch(const Model& m, const MaterialLaw& mat, double c0, double delta) {
-  const double sb = brittle_critical_stretch(m, mat, c0, delta);
-  // A history law's onset is a stress, the same at every horizon; its breaking stretch follows
-  // the brittle one so that a crack still dissipates G0.
-  return m.formulation.keeps_bond_history()
-             ? m.formulation.law->breaking_stretch(sb, mat.onset_stretch)
-             : sb;
-}
-
-double breaking_stretch(const Model& m, double c0, double delta) {
-  return breaking_stretch(m, m.material, c0, delta);
 }
 
 double micromodulus_factor(const Model& m, double m_level) {
@@ -71,7 +49,7 @@ void scale_material_to_horizon(Model& m, std::size_t i, double factor) {
   // The breaking stretch is the analytic one: calibration changes the stiffness, not the strain
   // at which a bond fails.
   if (mat.G0 > 0)
-    ns.critical_stretch[i] = breaking_stretch(m, mat, c0, d);
+    ns.critical_stretch[i] = breaking_stretch(m.formulation, ns.dim, mat, c0, d);
   else if (std::isfinite(mat.s0))
     // s0 given directly: keep the fracture energy it implies at the base horizon (s0 ~ delta^-1/2).
     ns.critical_stretch[i] = mat.s0 * std::sqrt(m.horizon / d);

@@ -34,15 +34,6 @@ struct RefineStats {
 // Base horizon of a node of `level` (before any interface correction).
 double level_horizon(const Model& m, const AdaptSpec& spec, int level);
 
-// The G0 critical stretch of a node with micromodulus c0 and horizon delta (PMB's or LPS's
-// calibration, thesis Eq. 2.15), and the stretch at which its bonds break: that one, or the
-// history law's breaking stretch derived from it. Need material.G0 > 0.
-// `mat`: a block's law (without it, the model's material).
-double brittle_critical_stretch(const Model& m, double c0, double delta);
-double breaking_stretch(const Model& m, double c0, double delta);
-double brittle_critical_stretch(const Model& m, const MaterialLaw& mat, double c0, double delta);
-double breaking_stretch(const Model& m, const MaterialLaw& mat, double c0, double delta);
-
 // What multiplies the analytic micromodulus of a node whose level has m = delta/dx = `m_level`:
 // 1, or with lattice calibration the inverse of the quadrature's bulk lattice moment there.
 double micromodulus_factor(const Model& m, double m_level);

@@ -46,7 +46,8 @@ struct BondLaw {
   // The same in the dual-horizon form (bonds.t_* built; call.rows must be null; call.split
   // for a distributed pass).
   std::size_t (*dual_forces)(NodeSet&, BondFamilies&, const BondLawCall&) = nullptr;
-  // Stored (recoverable) energy density of every node from the current state.
+  // Stored (recoverable) energy density of every node (call.rows: of those rows, the others
+  // keep theirs) from the current state.
   void (*energy_density)(const NodeSet&, const BondFamilies&, const BondLawCall&,
                          std::vector<double>&) = nullptr;
   // sigma_i = 1/2 sum_j c g F beta V e (x) xi, F the law's force factor (row-major 3 x 3).

@@ -194,10 +194,17 @@ struct BondLawKernels {
   struct Energy {
     static void run(const NodeSet& ns, const BondFamilies& bf, const BondLawCall& c,
                     std::vector<double>& W) {
-      W.assign(ns.size(), 0.0);
+      // With c.rows, only those rows; the others keep theirs.
+      const std::size_t n = c.rows ? c.rows->size() : ns.size();
+      if (c.rows) W.resize(ns.size(), 0.0);
+      else W.assign(ns.size(), 0.0);
 #pragma omp parallel for schedule(guided, 32)
-      for (std::size_t i = 0; i < ns.size(); ++i) {
-        if (!(ns.flags[i] & kActive)) continue;
+      for (std::size_t q = 0; q < n; ++q) {
+        const std::size_t i = c.rows ? (*c.rows)[q] : q;
+        if (!(ns.flags[i] & kActive)) {
+          W[i] = 0.0;
+          continue;
+        }
         const bool node_breaks = !(ns.flags[i] & kNoFail);
         const double b = ns.critical_stretch[i];
         double w = 0;

@@ -2,7 +2,7 @@
 // The force model of a run: PMB or LPS, each in the source- or dual-horizon pairing, or a
 // registered history law (material/bond_laws.cpp). One value replaces flags spread over the
 // layers: the deck asks it what a model can do, the solvers and the adaptor ask how its forces
-// behave, and solver/internal_forces.cpp dispatches on it to the kernels.
+// behave, and material/force_model.cpp dispatches on it to the kernels.
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -39,6 +39,9 @@ struct Formulation {
   bool takes_overlay() const { return kind != Kind::HistoryLaw && !dual_horizon; }
   bool takes_thermal_strain() const { return kind == Kind::Pmb && !dual_horizon; }
   bool works_in_1d() const { return kind != Kind::Lps; }
+  // Dual-horizon pairing in a distributed pass: the breaks, found before the forces, become
+  // every rank's inside the pass (DualRows::gather_breaks), since the dilatations read every bond.
+  bool gathers_breaks_in_pass() const { return kind == Kind::Lps; }
   // Bytes per bond beyond BondFamilies::bytes_per_bond() (transpose, history).
   std::size_t extra_bytes_per_bond() const {
     return (dual_horizon ? 20 : 0) + (keeps_bond_history() ? 8 : 0);

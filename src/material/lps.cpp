@@ -250,13 +250,18 @@ namespace {
 
 template <int D, InfluenceShape S, bool Mutual>
 void energy(const NodeSet& ns, const BondFamilies& bf, const LpsConstants& c,
-            const LpsScratch& sc, std::vector<double>& W) {
-  const std::size_t n = ns.size();
-  W.assign(n, 0.0);
+            const LpsScratch& sc, std::vector<double>& W, const std::vector<std::uint32_t>* rows) {
+  const std::size_t n = rows ? rows->size() : ns.size();
+  if (rows) W.resize(ns.size(), 0.0);
+  else W.assign(n, 0.0);
   const double* yp = ns.cur.data();
 #pragma omp parallel for schedule(dynamic, 512)
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!(ns.flags[i] & kActive) || !(sc.m[i] > 0)) continue;
+  for (std::size_t q = 0; q < n; ++q) {
+    const std::size_t i = rows ? (*rows)[q] : q;
+    if (!(ns.flags[i] & kActive) || !(sc.m[i] > 0)) {
+      W[i] = 0.0;
+      continue;
+    }
     const double Ci = sc.packed[4 * i + 2], idi = sc.packed[4 * i + 3];
     double wdev = 0;
     for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {
@@ -303,8 +308,8 @@ struct EnergyOp {
   template <int D, InfluenceShape S>
   struct Op {
     static void run(const NodeSet& ns, const BondFamilies& bf, const LpsConstants& c,
-                    LpsScratch& sc, std::vector<double>& W) {
-      energy<D, S, Mutual>(ns, bf, c, sc, W);
+                    LpsScratch& sc, std::vector<double>& W, const std::vector<std::uint32_t>* rows) {
+      energy<D, S, Mutual>(ns, bf, c, sc, W, rows);
     }
   };
 };
@@ -325,9 +330,9 @@ void lps_energy_density(const NodeSet& ns, const BondFamilies& bf, InfluenceShap
                         bool mutual_only, const std::vector<std::uint32_t>* rows) {
   lps_dilatation(ns, bf, shape, c, sc, mutual_only, rows);
   if (mutual_only)
-    by_dim_shape<EnergyOp<true>::Op>(ns.dim, shape, ns, bf, c, sc, W);
+    by_dim_shape<EnergyOp<true>::Op>(ns.dim, shape, ns, bf, c, sc, W, rows);
   else
-    by_dim_shape<EnergyOp<false>::Op>(ns.dim, shape, ns, bf, c, sc, W);
+    by_dim_shape<EnergyOp<false>::Op>(ns.dim, shape, ns, bf, c, sc, W, rows);
 }
 
 void lps_stress(const NodeSet& ns, const BondFamilies& bf, InfluenceShape shape,

@@ -81,7 +81,7 @@ void lps_dilatation(const NodeSet& nodes, const BondFamilies& bonds, InfluenceSh
                     const std::vector<std::uint32_t>* rows = nullptr);
 
 // Strain-energy density W_i = kappa theta^2 / 2 + (alpha mu / (2 m)) sum w (e^d)^2 beta V.
-// `rows`: these nodes' only (the others get 0).
+// `rows`: these nodes' only (the others keep theirs).
 void lps_energy_density(const NodeSet& nodes, const BondFamilies& bonds, InfluenceShape shape,
                         const LpsConstants& c, LpsScratch& scratch, std::vector<double>& W,
                         bool mutual_only, const std::vector<std::uint32_t>* rows = nullptr);

@@ -15,6 +15,7 @@
 #include "discretize/families.hpp"
 #include "discretize/precrack.hpp"
 #include "discretize/surface_correction.hpp"
+#include "material/force_model.hpp"
 #include "material/formulation.hpp"
 #include "material/lps.hpp"
 #include "material/contact.hpp"
@@ -81,6 +82,11 @@ struct Model {
   bool track_breakable_stretch = false;
   std::vector<double> breakable_stretch;
 };
+
+// What the force model's dispatch (material/force_model.hpp) reads of the model.
+inline MaterialContext material_context(const Model& m) {
+  return {m.formulation, m.material, m.lps_scratch, &m.pdro, &m.block_pairs};
+}
 
 // The law of node i's block.
 inline const MaterialLaw& node_material(const Model& m, std::size_t i) {

@@ -13,6 +13,7 @@
 #include "core/expression.hpp"
 #include "discretize/families.hpp"
 #include "input/deck_error.hpp"
+#include "material/force_model.hpp"
 #include "setup/memory_estimate.hpp"
 
 namespace periadapt {
@@ -47,7 +48,7 @@ void assign_blocks(const Deck& dk, Model& m, double tol) {
     }
     law.c0 = micromodulus_c0(dk.dim, dk.plane, dk.shape, law.bb_equivalent_E, dk.horizon, dk.thickness);
     law.G0 = b.G0.value_or(0.0);
-    law.s0 = b.G0 ? breaking_stretch(m, law, law.c0, dk.horizon) : b.s0.value_or(INFINITY);
+    law.s0 = b.G0 ? breaking_stretch(m.formulation, dk.dim, law, law.c0, dk.horizon) : b.s0.value_or(INFINITY);
     law.wave_speed = std::sqrt(p_wave_modulus(dk.dim, dk.plane, b.E, law.nu) / b.rho);
     m.block_materials.push_back(std::move(law));
   }
@@ -105,7 +106,7 @@ Model build_model(const Deck& dk) {
     mat.onset_stretch = dk.law_stress / all_round_modulus(dk.dim, dk.plane, dk.E);
   if (dk.G0) {
     mat.G0 = *dk.G0;
-    const double sb = brittle_critical_stretch(m, mat.c0, dk.horizon);
+    const double sb = brittle_critical_stretch(m.formulation, dk.dim, mat, mat.c0, dk.horizon);
     // Past the brittle critical stretch a history law could not dissipate G0 (it would yield or
     // soften after a brittle bond had already broken).
     if (m.formulation.keeps_bond_history() && !(mat.onset_stretch < sb))
@@ -114,7 +115,7 @@ Model build_model(const Deck& dk) {
                                   "a brittle bond breaks with this fracture_energy and horizon; "
                                   "give a smaller stress or a larger fracture_energy",
                                   dk.law_stress, mat.onset_stretch, sb));
-    mat.s0 = breaking_stretch(m, mat.c0, dk.horizon);
+    mat.s0 = breaking_stretch(m.formulation, dk.dim, mat, mat.c0, dk.horizon);
   } else if (dk.s0) {
     mat.s0 = *dk.s0;
   } else {

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <vector>
 
-#include "material/pmb.hpp"
 #include "solver/internal_forces.hpp"
 
 namespace periadapt {
@@ -39,7 +38,7 @@ bool run_dynamic_relaxation(Model& m, const RelaxationOptions& opt,
         }
   // Fictitious density: Gershgorin bound of the tangent stiffness row (unit pseudo time step).
   std::vector<double> K, lambda(n, 0.0);
-  pmb_stiffness_sum(ns, m.bonds, m.material.shape, K, &m.block_pairs);
+  material_stiffness_sum(ns, m.bonds, material_context(m), K);
   for (std::size_t i = 0; i < n; ++i) lambda[i] = std::max(0.5 * D * K[i], 1e-300);
 
   std::vector<double> F_prev(3 * n, 0.0);

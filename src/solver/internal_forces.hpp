@@ -1,7 +1,7 @@
 #pragma once
-// The model's internal force density, energy density and stress, whichever force model the deck
-// chose (m.formulation): the one dispatch point to the kernels. Solvers call these, never a
-// kernel.
+// The model's internal force density, energy density and stress: the material's, through its
+// one dispatch point (material/force_model.hpp), plus contact and rigid impactors; in a
+// distributed run, this rank's share and the exchange after it. Solvers call these.
 #include <cstdint>
 #include <vector>
 

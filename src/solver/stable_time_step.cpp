@@ -6,13 +6,12 @@
 
 #include "material/contact.hpp"
 #include "material/impactor.hpp"
-#include "material/pmb.hpp"
 
 namespace periadapt {
 
 StableStep stable_time_step(const Model& model) {
   std::vector<double> K;
-  pmb_stiffness_sum(model.nodes, model.bonds, model.material.shape, K, &model.block_pairs);
+  material_stiffness_sum(model.nodes, model.bonds, material_context(model), K);
   if (model.contact.enabled)
     for (std::size_t i = 0; i < K.size(); ++i)
       if (model.nodes.flags[i] & kActive) K[i] += contact_stiffness_bound(model.contact, model.nodes, i);
@@ -31,10 +30,11 @@ StableStep stable_time_step(const Model& model) {
 StableStep stable_time_step(const Model& model, const std::vector<std::uint32_t>& nodes) {
   const NodeSet& ns = model.nodes;
   const BondFamilies& bf = model.bonds;
+  const MaterialContext ctx = material_context(model);
   StableStep best{std::numeric_limits<double>::infinity(), 0};
   for (std::uint32_t i : nodes) {
     if (!(ns.flags[i] & kActive)) continue;
-    const double k = pmb_stiffness_row(ns, bf, model.material.shape, i, &model.block_pairs) +
+    const double k = material_stiffness_row(ns, bf, ctx, i) +
                      (model.contact.enabled ? contact_stiffness_bound(model.contact, ns, i) : 0.0) +
                      impactor_stiffness_bound(model.impactors, ns, i);
     if (!(k > 0)) continue;

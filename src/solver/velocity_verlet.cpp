@@ -5,7 +5,6 @@
 #include <stdexcept>
 #include <type_traits>
 
-#include "material/pmb.hpp"
 #include "solver/internal_forces.hpp"
 
 namespace periadapt {
@@ -254,10 +253,10 @@ void VelocityVerlet::classify_rates(const std::vector<std::uint32_t>* rows) {
   };
   if (rows) {
     for (std::uint32_t i : *rows)
-      sort_node(i, pmb_stiffness_row(ns, m_.bonds, m_.material.shape, i, &m_.block_pairs));
+      sort_node(i, material_stiffness_row(ns, m_.bonds, material_context(m_), i));
   } else {
     std::vector<double> K;
-    pmb_stiffness_sum(ns, m_.bonds, m_.material.shape, K, &m_.block_pairs);
+    material_stiffness_sum(ns, m_.bonds, material_context(m_), K);
     for (std::size_t i = 0; i < ns.size(); ++i) sort_node(i, K[i]);
   }
   std::sort(pending_.begin(), pending_.end());
@@ -353,8 +352,7 @@ void VelocityVerlet::compute_accelerations(const std::vector<std::uint32_t>* row
   const bool energy_kept = partial && want_energy && (subcycle || energy_step_ == step_);
   if (subcycle && want_energy) {
     gather_rows(step_, false, idle_rows_);
-    pmb_energy_density(ns, m_.bonds, m_.material.shape, energy_, m_.material.thermal_strain,
-                       &idle_rows_, &m_.block_pairs);
+    material_energy_density(ns, m_.bonds, material_context(m_), energy_, &idle_rows_);
   }
   energy_step_ = want_energy && (!partial || energy_kept) ? step_ : -1;
   // Multi-rate: a pass also writes its rows' densities (the same sweep), so that each row holds
