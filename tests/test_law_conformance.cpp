@@ -87,17 +87,22 @@ void random_deformation(NodeSet& ns, double amplitude, unsigned seed) {
   }
 }
 
+// 4e-6 m random displacements on a 1 mm grid: stretches up to ~8e-3, past every onset and some
+// breaking stretches; two passes so that histories and broken bonds take part.
+Model deformed_block(const LawCase& c, int dim, unsigned seed) {
+  Model m = block(c, dim, dim == 3 ? 8 : 14);
+  random_deformation(m.nodes, 4e-6, seed);
+  internal_forces(m, true);
+  random_deformation(m.nodes, 2e-6, seed + 1);
+  internal_forces(m, true);
+  return m;
+}
+
 class Conformance : public ::testing::TestWithParam<std::tuple<LawCase, int>> {};
 
 TEST_P(Conformance, RandomDeformationForcesSumToZero) {
   const auto& [c, dim] = GetParam();
-  Model m = block(c, dim, dim == 3 ? 8 : 14);
-  // 4e-6 m random displacements on a 1 mm grid: stretches up to ~8e-3, past every onset and
-  // some breaking stretches; two passes so that histories and broken bonds take part.
-  random_deformation(m.nodes, 4e-6, 7);
-  internal_forces(m, true);
-  random_deformation(m.nodes, 2e-6, 8);
-  internal_forces(m, true);
+  Model m = deformed_block(c, dim, 7);
   const NodeSet& ns = m.nodes;
   for (int d = 0; d < dim; ++d) {
     double sum = 0, scale = 0;
@@ -162,12 +167,7 @@ TEST_P(Conformance, ThreadCountChangesNoBit) {
 
 TEST_P(Conformance, EnergyOfSomeRowsIsTheWholeFieldsThere) {
   const auto& [c, dim] = GetParam();
-  Model m = block(c, dim, dim == 3 ? 8 : 14);
-  // Past onsets and some breaking stretches, so that histories and broken bonds take part.
-  random_deformation(m.nodes, 4e-6, 21);
-  internal_forces(m, true);
-  random_deformation(m.nodes, 2e-6, 22);
-  internal_forces(m, true);
+  Model m = deformed_block(c, dim, 21);
   std::vector<double> whole;
   material_energy_density(m.nodes, m.bonds, material_context(m), whole);
   const std::size_t n = m.nodes.size();
