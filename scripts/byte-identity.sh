@@ -50,7 +50,7 @@ outputs() {  # name: build and run everything into $work/<name>/out
       > "$out/$d.log" 2>&1 || echo "$name: $d exited $?" >> "$out/exits.txt"
   done
   if ((!quick)); then
-    for study in $("$bin" study --help | sed -n 's/^ *\([a-z0-9-]*\)  .*/\1/p' | grep -- -); do
+    for study in $("$bin" study --help | sed -n 's/.*TEXT:{\([^}]*\)}.*/\1/p' | tr , ' '); do
       OMP_NUM_THREADS=2 "$bin" study "$study" --out "$out/study-$study" > "$out/study-$study.log" 2>&1 ||
         echo "$name: study $study exited $?" >> "$out/exits.txt"
     done

@@ -3,6 +3,7 @@
 // given rows, or a distributed pass's share), energy density and stress, and how its breaking
 // stretch follows the horizon. Solvers, the adaptor and setup reach PMB, LPS and the registered
 // history laws through these, never through a kernel.
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -60,6 +61,19 @@ void material_stiffness_sum(const NodeSet& nodes, const BondFamilies& bonds,
                             const MaterialContext& ctx, std::vector<double>& K);
 double material_stiffness_row(const NodeSet& nodes, const BondFamilies& bonds,
                               const MaterialContext& ctx, std::size_t i);
+
+// The static solve's tangent (formulation.bond_based(): PMB, and the history laws on their
+// elastic branch): intact bond k of row i is a spring c_i g(|xi|/delta_i) beta / |xi| along its
+// direction, times the far end's volume (the assembly's), scaled across blocks.
+inline double elastic_bond_stiffness(const NodeSet& ns, const BondFamilies& bf,
+                                     InfluenceShape shape, const BlockPairs* pairs, std::size_t i,
+                                     std::uint64_t k) {
+  const double L = bf.length(k);
+  double w = ns.micromodulus[i] * influence(shape, std::min(1.0, L / ns.horizon[i])) *
+             static_cast<double>(bf.beta[k]) / L;
+  if (pairs && pairs->active()) w *= pairs->stiffness_row(ns.block[i])[ns.block[bf.neighbor[k]]];
+  return w;
+}
 
 // The critical stretch of a brittle bond of this formulation at horizon delta (micromodulus
 // constant c0 there) that dissipates mat.G0 over a crack.

@@ -22,7 +22,6 @@ using RowMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor>;
 RowMatrix assemble_bond_stiffness(const NodeSet& ns, const BondFamilies& bf, InfluenceShape shape,
                                   BondPairing pairing, const BlockPairs* pairs) {
   const int D = ns.dim;
-  const bool blocks = pairs && pairs->active();
   const std::size_t n = ns.size();
   const auto rows = static_cast<Eigen::Index>(static_cast<std::size_t>(D) * n);
   // S: off-diagonal blocks a_ij = c_i g(|xi|/delta_i) beta_ij / |xi| e e^T of the intact bonds of
@@ -36,9 +35,7 @@ RowMatrix assemble_bond_stiffness(const NodeSet& ns, const BondFamilies& bf, Inf
       const double L = bf.length(k);
       double e[3] = {0, 0, 0};
       for (int d = 0; d < D; ++d) e[d] = (ns.x[d][j] - ns.x[d][i]) / L;
-      double w = ns.micromodulus[i] * influence(shape, std::min(1.0, L / ns.horizon[i])) *
-                 static_cast<double>(bf.beta[k]) / L;
-      if (blocks) w *= pairs->stiffness_row(ns.block[i])[ns.block[j]];
+      const double w = elastic_bond_stiffness(ns, bf, shape, pairs, i, k);
       for (int a = 0; a < D; ++a)
         for (int b = 0; b < D; ++b)
           trip.emplace_back(static_cast<Eigen::Index>(D * i + a),
