@@ -9,7 +9,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 
+#include "adapt/refine.hpp"
 #include "input/deck_builder.hpp"
 #include "material/pmb.hpp"
 #include "studies/plate_error_profiles.hpp"
@@ -157,4 +159,129 @@ TEST(SurfaceCorrection, TensionPlateCentreLineErrorBelowTwoPercent) {
   std::printf("plate mean |e(u_x)|: energy %.3f%%, moments %.3f%%\n", mean_ex[0], mean_ex[1]);
   EXPECT_LT(mean_ex[1], 2.0);
   EXPECT_LT(mean_ex[1], mean_ex[0]);
+}
+
+namespace {
+
+// A 24 x 16 mm plate with `correction`, refined twice around (3, 8) mm on its left edge (level 1,
+// then level 2 inside it) and once in its middle: each event corrects its window again.
+Model refined_plate(const std::string& correction, bool global) {
+  if (global) setenv("PERIADAPT_GLOBAL_REBUILD", "1", 1);
+  else unsetenv("PERIADAPT_GLOBAL_REBUILD");
+  DeckBuilder d;
+  d.set("model.dimension", 2)
+      .set("model.plane", "stress")
+      .set("material.youngs_modulus", 1.0e9)
+      .set("material.density", 1000.0)
+      .set("discretization.spacing", 0.001)
+      .set("discretization.surface_correction", correction)
+      .set("discretization.body.box.min", std::vector<double>{0.0, 0.0})
+      .set("discretization.body.box.max", std::vector<double>{0.024, 0.016})
+      .set("damage.enabled", false)
+      .set("solver.steps", 1);
+  Model m = build_model(d.build("plate"));
+  m.window_surface_correction = true;  // as the adaptor sets it for a run's events
+  AdaptSpec spec;
+  spec.enabled = true;
+  spec.max_level = 2;
+  const auto near = [&](double cx, double cy, double r, int level) {
+    std::vector<std::uint32_t> out;
+    for (std::uint32_t i = 0; i < m.nodes.size(); ++i)
+      if ((m.nodes.flags[i] & kActive) && m.nodes.level[i] == level &&
+          std::abs(m.nodes.x[0][i] - cx) < r && std::abs(m.nodes.x[1][i] - cy) < r)
+        out.push_back(i);
+    return out;
+  };
+  refine_nodes(m, near(0.003, 0.008, 0.003, 0), spec);
+  refine_nodes(m, near(0.002, 0.008, 0.0012, 1), spec);
+  refine_nodes(m, near(0.015, 0.008, 0.002, 0), spec);
+  unsetenv("PERIADAPT_GLOBAL_REBUILD");
+  return m;
+}
+
+// Worst |W / W_classical - 1| over the strain states, over the active nodes at least 4 mm
+// (a coarse horizon and a cell) from two faces at once (a corner's family cannot take the bulk
+// moments with positive factors).
+double worst_energy_error(Model& m) {
+  NodeSet& ns = m.nodes;
+  const double E = 1e9;
+  double worst = 0;
+  for (const Strain& e : strain_states(2)) {
+    for (std::size_t i = 0; i < ns.size(); ++i) {
+      for (int a = 0; a < 2; ++a) ns.u[a][i] = e[a][0] * ns.x[0][i] + e[a][1] * ns.x[1][i];
+      ns.sync_current(i);
+    }
+    std::vector<double> W;
+    pmb_energy_density(ns, m.bonds, InfluenceShape::Constant, W);
+    const double Wc = classical_energy(2, PlaneCondition::Stress, E, e);
+    for (std::size_t i = 0; i < ns.size(); ++i) {
+      if (!(ns.flags[i] & kActive)) continue;
+      const double x = ns.x[0][i], y = ns.x[1][i];
+      const bool near_x = x < 0.004 || x > 0.020, near_y = y < 0.004 || y > 0.012;
+      if (near_x && near_y) continue;
+      worst = std::max(worst, std::abs(W[i] / Wc - 1));
+    }
+  }
+  return worst;
+}
+
+// Largest |beta_ij / beta_ji - 1| over the pairs whose ends have the same horizon and spacing
+// (their quadrature factors are equal, so a symmetric correction leaves them equal).
+double worst_asymmetry(const Model& m) {
+  const NodeSet& ns = m.nodes;
+  const BondFamilies& bf = m.bonds;
+  double worst = 0;
+  for (std::size_t i = 0; i < ns.size(); ++i)
+    for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {
+      const std::uint32_t j = bf.neighbor[k];
+      if (ns.horizon[j] != ns.horizon[i] || ns.spacing[j] != ns.spacing[i]) continue;
+      for (std::uint64_t h = bf.begin(j); h < bf.end(j); ++h)
+        if (bf.neighbor[h] == i)
+          worst = std::max(worst, std::abs(static_cast<double>(bf.beta[k]) / bf.beta[h] - 1));
+    }
+  return worst;
+}
+
+}  // namespace
+
+// The energy method's factors come from each node's own family and its neighbours', so an event
+// that corrects its window and the ring around it gives every bond the factor a correction of
+// the whole model gives.
+TEST(SurfaceCorrection, EnergyMethodOfAnEventsWindowEqualsTheWholeModels) {
+  const Model local = refined_plate("energy", false), global = refined_plate("energy", true);
+  ASSERT_EQ(local.nodes.size(), global.nodes.size());
+  std::size_t compared = 0;
+  double worst = 0;
+  for (std::size_t i = 0; i < local.nodes.size(); ++i) {
+    const BondFamilies &a = local.bonds, &b = global.bonds;
+    ASSERT_EQ(a.end(i) - a.begin(i), b.end(i) - b.begin(i)) << i;
+    for (std::uint64_t k = a.begin(i), h = b.begin(i); k < a.end(i); ++k, ++h) {
+      ASSERT_EQ(a.neighbor[k], b.neighbor[h]);
+      worst = std::max(worst, std::abs(static_cast<double>(a.beta[k]) / b.beta[h] - 1));
+      ++compared;
+    }
+  }
+  std::printf("energy method, %zu bonds: largest relative difference %.3g\n", compared, worst);
+  EXPECT_GT(compared, 10000u);
+  EXPECT_LT(worst, 1e-6);  // float factors
+}
+
+// The moments method's fixed point is not unique: an event's window, refitted from its old
+// factors, ends with other factors than a correction from scratch, but every node that can take
+// the bulk moments has them, and so the classical energy of every homogeneous strain.
+TEST(SurfaceCorrection, MomentsMethodOfAnEventsWindowGivesEveryNodeTheBulkMoments) {
+  Model none = refined_plate("false", false);
+  Model local = refined_plate("moments", false), global = refined_plate("moments", true);
+  const double e_none = worst_energy_error(none), e_local = worst_energy_error(local),
+               e_global = worst_energy_error(global);
+  std::printf("moments, worst |W/W_cl - 1| away from corners: none %.4f, window %.2e, whole "
+              "model %.2e\n", e_none, e_local, e_global);
+  EXPECT_GT(e_none, 0.3);
+  EXPECT_LT(e_global, 1e-3);
+  EXPECT_LT(e_local, 1e-3);
+  const double a_local = worst_asymmetry(local), a_global = worst_asymmetry(global);
+  std::printf("largest |beta_ij / beta_ji - 1| of like pairs: window %.2e, whole model %.2e\n",
+              a_local, a_global);
+  EXPECT_LT(a_global, 1e-6);  // float factors
+  EXPECT_LT(a_local, 1e-6);
 }

@@ -23,6 +23,7 @@ Adaptor::Adaptor(Model& m, VelocityVerlet& vv, const AdaptSpec& spec)
   // The stretch trigger reads each row's largest stretch from the force passes where they are
   // row-local (plain PMB); other forms measure it in a sweep of their own at each check.
   m_.track_breakable_stretch = spec_.enabled && spec_.stretch_fraction && m_.formulation.row_local();
+  m_.window_surface_correction = true;
 }
 
 std::size_t Adaptor::nodes_added() const {

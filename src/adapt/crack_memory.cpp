@@ -84,8 +84,12 @@ std::vector<std::uint32_t> rebuild_families(Model& m, const CrackMemory& mem,
   const int D = ns.dim;
   // The window: changed nodes and every active node whose search radius reaches one of them.
   std::vector<char> rebuild(ns.size(), 0);
-  const bool global = m.surface_correction != SurfaceCorrection::None ||
-                      std::getenv("PERIADAPT_GLOBAL_REBUILD") != nullptr;
+  const bool corrected = m.surface_correction != SurfaceCorrection::None;
+  const bool global = std::getenv("PERIADAPT_GLOBAL_REBUILD") != nullptr ||
+                      (corrected && !m.window_surface_correction);
+  // A surface correction multiplies the quadrature's factors: rows it corrects again must start
+  // from a fresh search, not from their patched (corrected) entries.
+  if (corrected) appended_only = false;
   if (!global) {
     // Largest search radius of any active node (the radius grows with both arguments).
     double hmax = 0, dxmax = 0;
@@ -133,6 +137,18 @@ std::vector<std::uint32_t> rebuild_families(Model& m, const CrackMemory& mem,
     }
     std::sort(histories.begin(), histories.end());
   }
+  // The corrected factors of the rows about to be searched again, for the moments correction's
+  // start.
+  std::vector<std::pair<std::uint64_t, float>> previous;
+  if (!global && m.surface_correction == SurfaceCorrection::Moments) {
+    for (std::size_t i = 0; i < std::min(n_before, bf.num_nodes()); ++i) {
+      if (!rebuild[i]) continue;
+      for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k)
+        previous.emplace_back((std::uint64_t{static_cast<std::uint32_t>(i)} << 32) | bf.neighbor[k],
+                              std::abs(bf.beta[k]));
+    }
+    std::sort(previous.begin(), previous.end());
+  }
   if (global) {
     const bool keeps_state = bf.keeps_state;
     bf = build_families(ns, m.quadrature);
@@ -148,10 +164,16 @@ std::vector<std::uint32_t> rebuild_families(Model& m, const CrackMemory& mem,
     rebuild_rows(bf, ns, m.quadrature, rebuild);
   }
   if (global) std::fill(rebuild.begin(), rebuild.end(), 1);
-  apply_surface_correction(ns, bf, m.material.shape,
-                           p_wave_modulus(D, m.material.plane, m.material.E, m.material.nu),
-                           m.surface_correction, m.formulation.state_based(),
-                           block_uniaxial_moduli(m));
+  const double modulus = p_wave_modulus(D, m.material.plane, m.material.E, m.material.nu);
+  // Rows around the window whose corrected factors the event changed.
+  std::vector<std::uint32_t> recorrected;
+  if (global)
+    apply_surface_correction(ns, bf, m.material.shape, modulus, m.surface_correction,
+                             m.formulation.state_based(), block_uniaxial_moduli(m));
+  else
+    recorrected = correct_surface_window(ns, bf, m.quadrature, m.material.shape, modulus,
+                                         m.surface_correction, m.formulation.state_based(),
+                                         block_uniaxial_moduli(m), rebuild, &previous);
   if (m.interface_fit) fit_interface_quadrature(ns, bf, m.material.shape, rebuild);
   apply_precracks(ns, bf, m.cracks, &rebuild);
   CellGrid* fgrid = nullptr;
@@ -203,6 +225,7 @@ std::vector<std::uint32_t> rebuild_families(Model& m, const CrackMemory& mem,
   // (a changed node puts every row that reaches it into the window).
   mark_unbreakable_bonds(ns, bf, &rebuild);
   if (m.formulation.dual_horizon) build_transpose(bf);
+  for (std::uint32_t i : recorrected) rebuild[i] = 1;
   update_damage_weights(ns, bf, &rebuild);
   std::vector<std::uint32_t> rows;
   for (std::size_t i = 0; i < ns.size(); ++i)

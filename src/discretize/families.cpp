@@ -191,6 +191,25 @@ void grow_bond_arrays(BondFamilies& fam, std::size_t total,
 
 }  // namespace
 
+std::vector<std::vector<QuadratureEntry>> quadrature_factors(
+    const NodeSet& nodes, const QuadratureSpec& quad, const std::vector<std::uint32_t>& rows) {
+  std::vector<std::vector<QuadratureEntry>> out(rows.size());
+  if (rows.empty()) return out;
+  const FamilySearch search(nodes, quad, rows);
+#pragma omp parallel
+  {
+    std::vector<Entry> row;
+#pragma omp for schedule(dynamic, 64)
+    for (std::size_t r = 0; r < rows.size(); ++r) {
+      if (!(nodes.flags[rows[r]] & kActive)) continue;
+      search.collect(rows[r], row);
+      out[r].reserve(row.size());
+      for (const Entry& e : row) out[r].push_back({e.j, e.beta, e.inv_len});
+    }
+  }
+  return out;
+}
+
 BondFamilies build_families(const NodeSet& nodes, const QuadratureSpec& quad, double headroom) {
   const std::size_t n = nodes.size();
   BondFamilies fam;

@@ -1,6 +1,8 @@
 #pragma once
 // Neighbor search: full CSR bond families H(i) = { j : |x_j - x_i| <= delta_i } built with a cell
 // list in O(N), in parallel, with the partial-volume factor of each bond.
+#include <vector>
+
 #include "core/bond_families.hpp"
 #include "core/node_set.hpp"
 #include "discretize/partial_volume.hpp"
@@ -33,6 +35,17 @@ BondFamilies build_families(const NodeSet& nodes, const QuadratureSpec& quadratu
 // this path (method A parents, interface horizons) needs a full search of the rows that see it.
 void rebuild_rows(BondFamilies& bonds, const NodeSet& nodes, const QuadratureSpec& quadrature,
                   const std::vector<char>& rows, const std::vector<char>* patch = nullptr);
+
+// What a search of the rows `rows` would write, without touching the families: per row, its
+// entries sorted by neighbour. A surface correction that updates a window of rows reads the
+// uncorrected factors of the rows around it this way.
+struct QuadratureEntry {
+  std::uint32_t j;
+  float beta;
+  double inv_length;
+};
+std::vector<std::vector<QuadratureEntry>> quadrature_factors(
+    const NodeSet& nodes, const QuadratureSpec& quadrature, const std::vector<std::uint32_t>& rows);
 
 // Active nodes (ascending ids) inside the bounding box of `seeds` grown by `margin`: the
 // candidates of a local search, found by one pass over the coordinates.

@@ -18,8 +18,13 @@
 // strain, shear and biaxial alike, not only the axial ones. Each sweep fits every node's own
 // direction multiplier G_i(n) = sum_d a_d n_d^2 + sum_{d<e} b_de n_d^2 n_e^2 (bulk: G = 1) to its
 // current moments and multiplies each bond by (G_i(n) G_j(n))^(omega/2), until no bond changes.
+#include <cstdint>
+#include <utility>
+#include <vector>
+
 #include "core/bond_families.hpp"
 #include "core/node_set.hpp"
+#include "discretize/families.hpp"
 #include "material/micromodulus.hpp"
 
 namespace periadapt {
@@ -38,5 +43,25 @@ void apply_surface_correction(const NodeSet& nodes, BondFamilies& bonds, Influen
                               SurfaceCorrection method = SurfaceCorrection::Energy,
                               bool state_based = false,
                               const std::vector<double>& block_modulus = {});
+
+// After a refinement event: the rows flagged in `fresh` were searched again (their factors are the
+// quadrature's), every other row keeps its corrected factors. Corrects the fresh rows and the
+// bonds the rows around them hold, so that the cost follows the event's window, not the model:
+// - energy: the nodes next to the window get their g from a search of their rows, so every bond
+//   ends with the factor a correction of the whole model gives;
+// - moments: the window and the ring next to it fit their multipliers again on the bonds between
+//   them (a window bond into the ring starts from its partner's factor, so the factors stay
+//   symmetric; bonds to nodes beyond keep theirs, and so do those nodes' moments); the fixed
+//   point is not unique, so the factors differ from a correction from scratch while every fitted
+//   node meets the bulk moments.
+// `previous` (moments, optional): the corrected |beta| the fresh rows' bonds had before the
+// event, by directed pair (i << 32 | j), sorted: a pair that survived starts from its old factor
+// (the fixed point then needs few sweeps), a new one from the mean of those.
+// Returns the rows outside `fresh` whose bonds changed.
+std::vector<std::uint32_t> correct_surface_window(
+    const NodeSet& nodes, BondFamilies& bonds, const QuadratureSpec& quadrature,
+    InfluenceShape shape, double uniaxial_modulus, SurfaceCorrection method, bool state_based,
+    const std::vector<double>& block_modulus, const std::vector<char>& fresh,
+    const std::vector<std::pair<std::uint64_t, float>>* previous = nullptr);
 
 }  // namespace periadapt

@@ -72,6 +72,10 @@ struct Model {
   std::vector<Shape> holes;       // ... nor inside a hole
   std::optional<Shape> body_clip; // ... nor outside a non-box body (disk)
   SurfaceCorrection surface_correction = SurfaceCorrection::None;
+  // Refinement events correct only their window and the ring around it (set by the adaptor for
+  // the run's events); refinement during set-up searches and corrects the whole model, which
+  // costs once and leaves the canonical factors.
+  bool window_surface_correction = false;
   bool interface_fit = false;  // adapt.interface_fit: rebuilt interface rows pass the patch test
   PdroSpec pdro;              // refinement overlay for bond failure (PMB)
   ContactSpec contact;        // short-range repulsion between nodes (material/contact.hpp)
