@@ -431,14 +431,16 @@ std::vector<std::uint32_t> correct_surface_window(
     for (std::uint32_t i : window)
       for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {
         const std::uint32_t j = bf.neighbor[k];
-        if (!in[j] || j < i) continue;
-        double c = old_factor(i, k);
+        if (!in[j]) continue;
         std::uint64_t mirror = UINT64_MAX;
         for (std::uint64_t h = bf.begin(j); h < bf.end(j); ++h)
           if (bf.neighbor[h] == i) {
             mirror = h;
             break;
           }
+        // A pair is set once, from its lower row; a bond without a partner row, from its own.
+        if (j < i && mirror != UINT64_MAX) continue;
+        double c = old_factor(i, k);
         const double cm = mirror != UINT64_MAX ? old_factor(j, mirror) : -1.0;
         c = c > 0 && cm > 0 ? std::sqrt(c * cm) : c > 0 ? c : cm > 0 ? cm : mean;
         c = std::clamp(c, 0.5 * mean, 2.0 * mean);
