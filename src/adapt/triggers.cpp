@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "analysis/breakable_stretch.hpp"
 #include "core/cell_grid.hpp"
 #include "adapt/refine.hpp"
 #include "discretize/families.hpp"
@@ -68,8 +69,6 @@ std::vector<std::uint32_t> energy_trigger(const Model& m, const std::vector<doub
 std::vector<std::uint32_t> stretch_trigger(const Model& m, const AdaptSpec& spec, double beta,
                                            const std::vector<char>& refinable) {
   const NodeSet& ns = m.nodes;
-  const BondFamilies& bf = m.bonds;
-  const double eth = m.material.thermal_strain;
   const std::size_t n = ns.size();
   std::vector<char> hot(n, 0);
   // The force passes measured it already (row-local PMB): their latest value per row.
@@ -85,42 +84,8 @@ std::vector<std::uint32_t> stretch_trigger(const Model& m, const AdaptSpec& spec
         beta * std::min(m.material.onset_stretch,
                         ns.critical_stretch[i] *
                             std::sqrt(ns.horizon[i] / level_horizon(m, spec, ns.level[i] + 1)));
-    if (tracked) {
-      hot[i] = m.breakable_stretch[i] >= limit;
-      continue;
-    }
-    const double* yp = ns.cur.data();
-    const double yi0 = yp[4 * i], yi1 = yp[4 * i + 1], yi2 = yp[4 * i + 2];
-    const std::uint32_t* nbr = bf.neighbor.data();
-    const double* inv_len = bf.inv_length.data();
-    const float* bt = bf.beta.data();
-    // (|y| / |xi|)^2 of the intact breakable bonds, largest of the row (branch-free so that it
-    // vectorizes: broken bonds have beta < 0, unbreakable ones 1/|xi| < 0).
-    if (m.block_pairs.active()) {
-      // Several materials: each bond's stretch in units of s0_i / s0_ij (material/blocks.hpp).
-      const double* isf = m.block_pairs.inv_stretch_row(ns.block[i]);
-      double sn = -INFINITY;
-      for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {
-        if (!(bt[k] > 0.0f) || !(inv_len[k] > 0.0)) continue;
-        const std::size_t j = 4 * static_cast<std::size_t>(nbr[k]);
-        const double d0 = yp[j] - yi0, d1 = yp[j + 1] - yi1, d2 = yp[j + 2] - yi2;
-        const double s = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2) * inv_len[k] - 1.0 - eth;
-        sn = std::max(sn, s * isf[ns.block[nbr[k]]]);
-      }
-      hot[i] = sn >= limit;
-      continue;
-    }
-    double q = 0;
-#pragma omp simd reduction(max : q)
-    for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {
-      const std::size_t j = 4 * static_cast<std::size_t>(nbr[k]);
-      const double d0 = yp[j] - yi0, d1 = yp[j + 1] - yi1, d2 = yp[j + 2] - yi2;
-      const double il = inv_len[k];
-      const double v = (d0 * d0 + d1 * d1 + d2 * d2) * il * il;
-      q = std::max(q, (bt[k] > 0.0f && il > 0.0) ? v : 0.0);
-    }
-    const double s = 1.0 + eth + limit;
-    hot[i] = q >= s * s;
+    hot[i] = (tracked ? m.breakable_stretch[i]
+                      : largest_breakable_stretch(m, static_cast<std::uint32_t>(i))) >= limit;
   }
   std::vector<std::uint32_t> out;
   for (std::size_t i = 0; i < n; ++i)

@@ -1,5 +1,6 @@
 #include "run/snapshot_fields.hpp"
 
+#include "analysis/breakable_stretch.hpp"
 #include "core/visible_gradient.hpp"
 #include "solver/internal_forces.hpp"
 
@@ -27,6 +28,7 @@ std::vector<PointField> snapshot_fields(const Model& m, const std::vector<double
   for (std::size_t i = 0; i < n; ++i) lvl.data[i] = ns.level[i];
   f.push_back(std::move(lvl));
   f.push_back({"volume", 1, ns.volume});
+  f.push_back({"stretch_ratio", 1, breakable_stretch_ratio(m)});
   if (!ns.block.empty()) {
     PointField blk{"block", 1, std::vector<double>(n)};
     for (std::size_t i = 0; i < n; ++i) blk.data[i] = ns.block[i];
