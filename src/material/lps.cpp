@@ -51,9 +51,18 @@ void dilatation(const NodeSet& ns, const BondFamilies& bf, const LpsConstants& c
   const float* beta = bf.beta.data();
   // Each family's longest bond first: the next loop keeps only bonds whose far end's family
   // holds the near end too (every bond without Mutual: the dual-horizon form's states).
+  // With `rows`, only the families the passes read: the rows' and their far ends'.
+  std::vector<char> needed;
+  if (Mutual && row) {
+    needed.assign(n, 0);
+    for (std::size_t r = 0; r < n_rows; ++r) {
+      needed[row[r]] = 1;
+      for (std::uint64_t k = bf.begin(row[r]); k < bf.end(row[r]); ++k) needed[nbr[k]] = 1;
+    }
+  }
 #pragma omp parallel for schedule(dynamic, 512) if (Mutual)
   for (std::size_t i = 0; i < (Mutual ? n : 0); ++i) {
-    if (!(ns.flags[i] & kActive)) continue;
+    if (!(ns.flags[i] & kActive) || (row && !needed[i])) continue;
     double shortest_inv = INFINITY;
 #pragma omp simd reduction(min : shortest_inv)
     for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k)
