@@ -22,6 +22,8 @@ check blocks_dual_horizon.yaml "blocks_dual_horizon.yaml:5:3: key 'blocks': seve
 check blocks_poisson_pmb.yaml "blocks_poisson_pmb.yaml:6:93: key 'blocks[0].material.poisson_ratio': the bond-based PMB model fixes Poisson's ratio of every block"
 check blocks_no_nodes.yaml "blocks_no_nodes.yaml:6:13: key 'blocks[0].region': the region selects no nodes"
 check blocks_no_fracture.yaml "blocks_no_fracture.yaml:6:15: key 'blocks[0].material': damage is enabled: give this block's fracture_energy"
+check ghost_dual_horizon.yaml "ghost_dual_horizon.yaml:5:41: key 'adapt.ghost_correction': the correction acts on each row's own force"
+check ghost_static.yaml "ghost_static.yaml:11:21: key 'adapt.ghost_correction': the static solver assembles the bond stiffness directly"
 # run refuses a time step above the finest level's stable step; so must check.
 check adapt_time_step.yaml "adapt_time_step.yaml: key 'solver.time_step': 1.5e-07 s exceeds the stable step expected at refinement level 1"
 check list_key.yaml "list_key.yaml:2:1: a key must be a plain name"

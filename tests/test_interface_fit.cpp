@@ -1,15 +1,20 @@
 // The patch test at level interfaces: a uniform strain must pull no node away from the free
 // edges. The plain midpoint sums over cells of two sizes fail it (ghost forces); the fitted
-// interface rows (adapt.interface_fit, discretize/interface_quadrature.hpp) pass it.
+// interface rows (adapt.interface_fit, discretize/interface_quadrature.hpp, bond-based forces)
+// and the ghost-force table (adapt.ghost_correction, solver/ghost_correction.hpp, PMB and LPS)
+// pass it.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <string>
 
+#include "adapt/refine.hpp"
 #include "input/deck_builder.hpp"
 #include "input/deck_error.hpp"
 #include "run/simulation.hpp"
+#include "setup/build_model.hpp"
+#include "solver/ghost_correction.hpp"
 #include "test_helpers.hpp"
 
 using namespace periadapt;
@@ -20,7 +25,10 @@ constexpr double kE = 72.0e9, kRho = 2440.0, kStrain = 1e-4;
 
 // A plate (square in 2D, cube in 3D) of `size` on a 1 mm grid with a level-1 patch in its middle,
 // under the uniform strain (1, 0.3, 0.2) x 1e-4, damage off, one step.
-DeckBuilder patch_deck(int dim, double size, bool fit, const std::string& pairing = "source_horizon") {
+// `treatment`: "none", "fit" (adapt.interface_fit), "ghost" (adapt.ghost_correction) or
+// "uniform" (no patch: the uniform grid's own response, free surfaces included).
+DeckBuilder patch_deck(int dim, double size, const std::string& treatment,
+                       const std::string& pairing = "source_horizon") {
   std::vector<double> lo(static_cast<std::size_t>(dim), 0.0), hi(static_cast<std::size_t>(dim), size),
       plo(static_cast<std::size_t>(dim), 0.5 * size - 0.004),
       phi(static_cast<std::size_t>(dim), 0.5 * size + 0.004);
@@ -36,12 +44,14 @@ DeckBuilder patch_deck(int dim, double size, bool fit, const std::string& pairin
       .set("discretization.body.box.max", hi)
       .set("initial_conditions.displacement", u)
       .set("damage.enabled", false)
-      .append("adapt.initial_refinement",
-              DeckBuilder().set("region", test::box(plo, phi)).set("level", 1))
-      .set("adapt.interface_fit", fit)
       .set("solver.type", "explicit")
       .set("solver.bond_pairing", pairing)
       .set("solver.steps", 1);
+  if (treatment != "uniform")
+    d.append("adapt.initial_refinement",
+             DeckBuilder().set("region", test::box(plo, phi)).set("level", 1))
+        .set("adapt.interface_fit", treatment == "fit")
+        .set("adapt.ghost_correction", treatment == "ghost");
   if (dim == 2) d.set("model.plane", "stress");
   return d;
 }
@@ -84,8 +94,8 @@ Ghost ghost_forces(const DeckBuilder& d, int dim, double size) {
 // applied strain's jump across a horizon (0.48, bench/interface/patch_test.sh); fitted, what is
 // left is the bond force's nonlinearity in the strain (order 1e-4 at a strain of 1e-4).
 TEST(InterfaceFit, TwoDimensionalPatchPassesThePatchTest) {
-  const Ghost plain = ghost_forces(patch_deck(2, 0.06, false), 2, 0.06);
-  const Ghost fitted = ghost_forces(patch_deck(2, 0.06, true), 2, 0.06);
+  const Ghost plain = ghost_forces(patch_deck(2, 0.06, "none"), 2, 0.06);
+  const Ghost fitted = ghost_forces(patch_deck(2, 0.06, "fit"), 2, 0.06);
   std::printf("2D ghost force: plain %.4g (far %.2g), fitted %.4g (far %.2g)\n", plain.near,
               plain.far, fitted.near, fitted.far);
   EXPECT_GT(plain.near, 0.1);
@@ -96,8 +106,8 @@ TEST(InterfaceFit, TwoDimensionalPatchPassesThePatchTest) {
 
 // 3D: ten cubic moments per row instead of four.
 TEST(InterfaceFit, ThreeDimensionalPatchPassesThePatchTest) {
-  const Ghost plain = ghost_forces(patch_deck(3, 0.026, false), 3, 0.026);
-  const Ghost fitted = ghost_forces(patch_deck(3, 0.026, true), 3, 0.026);
+  const Ghost plain = ghost_forces(patch_deck(3, 0.026, "none"), 3, 0.026);
+  const Ghost fitted = ghost_forces(patch_deck(3, 0.026, "fit"), 3, 0.026);
   std::printf("3D ghost force: plain %.4g, fitted %.4g\n", plain.near, fitted.near);
   EXPECT_GT(plain.near, 0.1);
   EXPECT_LT(fitted.near, 1e-3);
@@ -106,8 +116,117 @@ TEST(InterfaceFit, ThreeDimensionalPatchPassesThePatchTest) {
 // The fit repairs each row's own sum; the dual-horizon pairing adds the memberships of other
 // rows, and LPS sums other moments: both refused.
 TEST(InterfaceFit, RefusedWhereItDoesNotApply) {
-  EXPECT_THROW(patch_deck(2, 0.06, true, "dual_horizon").build(), DeckError);
-  EXPECT_THROW(patch_deck(2, 0.06, true).set("model.formulation", "lps")
+  EXPECT_THROW(patch_deck(2, 0.06, "fit", "dual_horizon").build(), DeckError);
+  EXPECT_THROW(patch_deck(2, 0.06, "fit").set("model.formulation", "lps")
                    .set("material.poisson_ratio", 0.3).build(),
                DeckError);
+}
+
+namespace {
+
+DeckBuilder lps(DeckBuilder d) {
+  return d.set("model.formulation", "lps").set("material.poisson_ratio", 0.3);
+}
+
+}  // namespace
+
+// The table measures each interface row's own response to a uniform strain, so it passes the
+// patch test for bond-based and state-based forces alike; what is left is the force's
+// nonlinearity in the strain (order 1e-4 at a strain of 1e-4). LPS without it: 1.5 (coarse
+// side) and 1.8 (fine side).
+TEST(GhostCorrection, TwoDimensionalPatchPassesThePatchTestForPmbAndLps) {
+  const Ghost pmb = ghost_forces(patch_deck(2, 0.06, "none"), 2, 0.06);
+  const Ghost pmb_g = ghost_forces(patch_deck(2, 0.06, "ghost"), 2, 0.06);
+  const Ghost lps_plain = ghost_forces(lps(patch_deck(2, 0.06, "none")), 2, 0.06);
+  const Ghost lps_g = ghost_forces(lps(patch_deck(2, 0.06, "ghost")), 2, 0.06);
+  std::printf("2D ghost force: PMB %.4g -> %.4g, LPS %.4g -> %.4g (far %.2g, %.2g)\n", pmb.near,
+              pmb_g.near, lps_plain.near, lps_g.near, pmb_g.far, lps_g.far);
+  EXPECT_GT(pmb.near, 0.1);
+  EXPECT_GT(lps_plain.near, 0.5);
+  EXPECT_LT(pmb_g.near, 1e-3);
+  EXPECT_LT(lps_g.near, 1e-3);
+  EXPECT_LT(pmb_g.far, 1e-6);
+}
+
+// In the 26 mm cube every node lies within three horizons of the patch, and the LPS nodes two
+// horizons from a face still feel the faces through their neighbours' dilatations: the measure
+// is held to the uniform grid's (no patch) at the same nodes. The patch is kept to its box (no
+// visibility widening): interface rows within two horizons of a face stay uncorrected (their
+// neighbours' balls are cut by it), and their motion in the step would reach the measure.
+TEST(GhostCorrection, ThreeDimensionalPatchPassesThePatchTestForLps) {
+  const auto boxed = [](DeckBuilder d) { return d.set("adapt.visibility", false); };
+  const Ghost uniform = ghost_forces(lps(patch_deck(3, 0.026, "uniform")), 3, 0.026);
+  const Ghost plain = ghost_forces(boxed(lps(patch_deck(3, 0.026, "none"))), 3, 0.026);
+  const Ghost fixed = ghost_forces(boxed(lps(patch_deck(3, 0.026, "ghost"))), 3, 0.026);
+  std::printf("3D LPS ghost force: %.4g -> %.4g (uniform grid %.4g)\n", plain.near, fixed.near,
+              uniform.near);
+  EXPECT_GT(plain.near, 0.1);
+  EXPECT_LT(fixed.near, uniform.near + 1e-3);
+}
+
+// The dual-horizon pairing conserves energy, which the table would lose; a bond history is not
+// an elastic response. Each refusal names the key (the static solver's: tests/bad_decks).
+TEST(GhostCorrection, RefusedWhereItDoesNotApply) {
+  const auto refusal = [](const DeckBuilder& d) {
+    try {
+      d.build();
+    } catch (const DeckError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  const std::string dual = refusal(patch_deck(2, 0.06, "ghost", "dual_horizon"));
+  EXPECT_NE(dual.find("ghost_correction"), std::string::npos) << dual;
+  DeckBuilder soft = patch_deck(2, 0.06, "ghost");
+  soft.set("model.formulation", "bilinear_softening").set("material.peak_stress", 1.0e6);
+  const std::string history = refusal(soft);
+  EXPECT_NE(history.find("ghost_correction"), std::string::npos) << history;
+}
+
+// An event recomputes the rows it rebuilt (state-based: and the rows that reach them); the
+// table then equals one built whole, as a restart builds it. Three events: a zone at the left
+// edge (its rows near the edge stay uncorrected), a level-2 zone inside it, one in the middle.
+TEST(GhostCorrection, TableUpdatedEventByEventEqualsTheWholeTable) {
+  for (const char* formulation : {"pmb", "lps"}) {
+    DeckBuilder d;
+    d.set("model.dimension", 2)
+        .set("model.plane", "stress")
+        .set("model.formulation", formulation)
+        .set("material.youngs_modulus", 1.0e9)
+        .set("material.poisson_ratio", 1.0 / 3.0)
+        .set("material.density", 1000.0)
+        .set("discretization.spacing", 0.001)
+        .set("discretization.body.box.min", std::vector<double>{0.0, 0.0})
+        .set("discretization.body.box.max", std::vector<double>{0.024, 0.016})
+        .set("damage.enabled", false)
+        .set("solver.steps", 1);
+    Model m = build_model(d.build("plate"));
+    m.ghost.enabled = true;
+    update_ghost_table(m);
+    AdaptSpec spec;
+    spec.enabled = true;
+    spec.max_level = 2;
+    const auto near = [&](double cx, double cy, double r, int level) {
+      std::vector<std::uint32_t> out;
+      for (std::uint32_t i = 0; i < m.nodes.size(); ++i)
+        if ((m.nodes.flags[i] & kActive) && m.nodes.level[i] == level &&
+            std::abs(m.nodes.x[0][i] - cx) < r && std::abs(m.nodes.x[1][i] - cy) < r)
+          out.push_back(i);
+      return out;
+    };
+    refine_nodes(m, near(0.003, 0.008, 0.003, 0), spec);
+    update_ghost_table(m);
+    refine_nodes(m, near(0.003, 0.008, 0.0012, 1), spec);
+    update_ghost_table(m);
+    refine_nodes(m, near(0.016, 0.008, 0.002, 0), spec);
+    update_ghost_table(m);
+    const GhostTable events = m.ghost;
+    m.ghost.rebuild_all = true;
+    update_ghost_table(m);
+    std::printf("%s: %zu corrected rows\n", formulation, events.rows.size());
+    EXPECT_GT(events.rows.size(), 50u);
+    EXPECT_EQ(events.rows, m.ghost.rows);
+    EXPECT_EQ(events.G, m.ghost.G);
+    EXPECT_EQ(events.Kinv, m.ghost.Kinv);
+  }
 }

@@ -9,7 +9,7 @@ set -euo pipefail
 cd "$(dirname "$0")/../.."
 [[ -x build/periadapt ]] || bash scripts/build.sh
 out=$(mktemp -d); trap 'rm -rf "$out"' EXIT
-for p in source_horizon dual_horizon; do
+for p in ${PAIRINGS:-source_horizon dual_horizon}; do
   build/periadapt run bench/interface/uniform_strain_patch.yaml --out "$out/$p" --quiet \
     --set solver.bond_pairing=$p "$@" > /dev/null 2> "$out/$p.err" ||
     echo "$p: $(cat "$out/$p.err")"

@@ -46,6 +46,9 @@ struct AdaptSpec {
   // Interface rows' bond factors fitted so that a uniform strain pulls no node (patch test;
   // discretize/interface_quadrature.hpp). Bond-based forces only.
   bool interface_fit = false;
+  // Interface rows' ghost forces removed to first order in the local strain
+  // (solver/ghost_correction.hpp). Source-horizon pairing, PMB and LPS.
+  bool ghost_correction = false;
   double start_time = 0.0;          // t_st: no refinement before
   int check_every = 1;              // steps between energy-trigger checks
   std::optional<double> energy_fraction;  // energy trigger W >= alpha W_max (None: off)

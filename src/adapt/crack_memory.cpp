@@ -230,6 +230,7 @@ std::vector<std::uint32_t> rebuild_families(Model& m, const CrackMemory& mem,
   std::vector<std::uint32_t> rows;
   for (std::size_t i = 0; i < ns.size(); ++i)
     if (rebuild[i]) rows.push_back(static_cast<std::uint32_t>(i));
+  if (m.ghost.enabled) m.ghost.pending.insert(m.ghost.pending.end(), rows.begin(), rows.end());
   return rows;
 }
 

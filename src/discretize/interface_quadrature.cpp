@@ -158,4 +158,69 @@ InterfaceFitStats fit_interface_quadrature(const NodeSet& ns, BondFamilies& bf,
   return st;
 }
 
+std::vector<char> rows_with_covered_ball(const NodeSet& ns, const std::vector<std::uint32_t>& rows) {
+  std::vector<char> out(rows.size(), 0);
+  if (rows.empty()) return out;
+  const int D = ns.dim;
+  double smax = 0, hmax = 0, lo[3] = {INFINITY, INFINITY, INFINITY},
+         hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  for (std::size_t i = 0; i < ns.size(); ++i)
+    if (ns.flags[i] & kActive) smax = std::max(smax, ns.spacing[i]);
+  for (std::uint32_t i : rows) {
+    hmax = std::max(hmax, ns.horizon[i]);
+    for (int d = 0; d < D; ++d) lo[d] = std::min(lo[d], ns.x[d][i]), hi[d] = std::max(hi[d], ns.x[d][i]);
+  }
+  const double reach = 0.5 * std::sqrt(static_cast<double>(D)) * smax * (1 + 1e-9);
+  std::vector<std::uint32_t> near;
+  for (std::size_t j = 0; j < ns.size(); ++j) {
+    if (!(ns.flags[j] & kActive)) continue;
+    bool in = true;
+    for (int d = 0; d < D && in; ++d)
+      in = ns.x[d][j] >= lo[d] - hmax - 2 * reach && ns.x[d][j] <= hi[d] + hmax + 2 * reach;
+    if (in) near.push_back(static_cast<std::uint32_t>(j));
+  }
+  const CellGrid grid(D, {ns.x[0].data(), ns.x[1].data(), ns.x[2].data()}, near, reach);
+  // Directions: 32 in 2D, 64 on a Fibonacci sphere in 3D; rings at 0.5, 0.8 and 0.98 of the
+  // horizon, so a surface anywhere within it leaves a sample uncovered.
+  std::vector<std::array<double, 3>> dirs;
+  if (D == 1) {
+    dirs = {{1, 0, 0}, {-1, 0, 0}};
+  } else if (D == 2) {
+    for (int k = 0; k < 32; ++k) {
+      const double t = 2 * 3.14159265358979323846 * (k + 0.5) / 32;
+      dirs.push_back({std::cos(t), std::sin(t), 0});
+    }
+  } else {
+    const double golden = 3.14159265358979323846 * (3 - std::sqrt(5.0));
+    for (int k = 0; k < 64; ++k) {
+      const double z = 1 - 2 * (k + 0.5) / 64, r = std::sqrt(1 - z * z);
+      dirs.push_back({r * std::cos(golden * k), r * std::sin(golden * k), z});
+    }
+  }
+#pragma omp parallel for schedule(dynamic, 32)
+  for (std::size_t q = 0; q < rows.size(); ++q) {
+    const std::uint32_t i = rows[q];
+    bool all = true;
+    for (const double f : {0.5, 0.8, 0.98}) {
+      for (const auto& e : dirs) {
+        std::array<double, 3> p{0, 0, 0};
+        for (int d = 0; d < D; ++d) p[d] = ns.x[d][i] + f * ns.horizon[i] * e[d];
+        bool covered = false;
+        grid.for_each_within(p, reach, [&](std::uint32_t j, double) {
+          double far = 0;
+          for (int d = 0; d < D; ++d) far = std::max(far, std::abs(p[d] - ns.x[d][j]));
+          covered = covered || far <= 0.5 * ns.spacing[j] * (1 + 1e-9);
+        });
+        if (!covered) {
+          all = false;
+          break;
+        }
+      }
+      if (!all) break;
+    }
+    out[q] = all;
+  }
+  return out;
+}
+
 }  // namespace periadapt

@@ -31,4 +31,8 @@ InterfaceFitStats fit_interface_quadrature(const NodeSet& ns, BondFamilies& bf,
                                            InfluenceShape shape,
                                            const std::vector<char>& rows = {});
 
+// Per row of `rows`: whether the nodes' cells cover the row's horizon ball (sampled on rings at
+// 0.5, 0.8 and 0.98 of the horizon); false where a free surface, hole or body edge lies within it.
+std::vector<char> rows_with_covered_ball(const NodeSet& ns, const std::vector<std::uint32_t>& rows);
+
 }  // namespace periadapt

@@ -242,6 +242,17 @@ void parse_adapt(Section& top, Deck& dk) {
       a->fail("interface_fit", "the fit makes each row's own bond sum pass the patch test; the "
                                "dual-horizon pairing adds other rows' memberships (use "
                                "bond_pairing: source_horizon)");
+    ad.ghost_correction = a->boolean("ghost_correction", false);
+    if (ad.ghost_correction && dk.dual_horizon)
+      a->fail("ghost_correction", "the correction acts on each row's own force; the dual-horizon "
+                                  "pairing conserves energy and would lose it (use bond_pairing: "
+                                  "source_horizon)");
+    if (ad.ghost_correction && Formulation::named(dk.formulation)->keeps_bond_history())
+      a->fail("ghost_correction", "the table is the elastic response of each row; formulation " +
+                                      dk.formulation + " keeps a bond history (pmb or lps only)");
+    if (ad.ghost_correction && dk.solver == Deck::SolverType::Static)
+      a->fail("ghost_correction", "the static solver assembles the bond stiffness directly; the "
+                                  "correction is for explicit and relaxation runs");
     if (ad.refine_loads && ad.method == NodeGeneration::A)
       a->fail("refine_loads", "method a shrinks the loaded parents' cells without handing the "
                               "lost load to the new nodes; use method b");

@@ -25,6 +25,7 @@
 #include "material/micromodulus.hpp"
 #include "overlay/pdro.hpp"
 #include "parallel/row_partition.hpp"
+#include "model/ghost_table.hpp"
 #include "model/time_function.hpp"
 
 namespace periadapt {
@@ -77,6 +78,7 @@ struct Model {
   // costs once and leaves the canonical factors.
   bool window_surface_correction = false;
   bool interface_fit = false;  // adapt.interface_fit: rebuilt interface rows pass the patch test
+  GhostTable ghost;            // ghost-force correction of interface rows (solver/ghost_correction.hpp)
   PdroSpec pdro;              // refinement overlay for bond failure (PMB)
   ContactSpec contact;        // short-range repulsion between nodes (material/contact.hpp)
   std::vector<Impactor> impactors;  // rigid bodies that strike it (material/impactor.hpp)

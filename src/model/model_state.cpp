@@ -137,6 +137,10 @@ void restore_model_state(ArchiveReader& r, Model& m) {
     m.pdro.counters->checks = checks;
     m.pdro.counters->breaks = breaks;
   }
+  // The ghost-force table is a function of the families: built whole at the next force pass,
+  // equal to the one the uninterrupted run built event by event.
+  m.ghost.rebuild_all = true;
+  m.ghost.pending.clear();
 }
 
 }  // namespace periadapt

@@ -155,6 +155,7 @@ Model build_model(const Deck& dk) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   m.surface_correction = dk.surface_correction;
   m.interface_fit = dk.adapt.interface_fit;
+  m.ghost.enabled = dk.adapt.ghost_correction;
   apply_surface_correction(ns, m.bonds, dk.shape, p_wave_modulus(dk.dim, dk.plane, dk.E, mat.nu),
                            m.surface_correction, m.formulation.state_based(),
                            block_uniaxial_moduli(m));

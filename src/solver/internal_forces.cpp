@@ -8,6 +8,7 @@
 #include "material/impactor.hpp"
 #include "parallel/mpi_env.hpp"
 #include "parallel/row_partition.hpp"
+#include "solver/ghost_correction.hpp"
 
 namespace periadapt {
 
@@ -136,14 +137,18 @@ std::size_t serial_forces(Model& m, bool allow_breaking, const std::vector<std::
 
 std::size_t internal_forces(Model& m, bool allow_breaking, std::vector<std::uint64_t>* log,
                             std::vector<double>* W) {
-  if (m.partition.active) return distributed_forces(m, allow_breaking, nullptr, log, W);
-  return serial_forces(m, allow_breaking, nullptr, log, W);
+  const std::size_t b = m.partition.active ? distributed_forces(m, allow_breaking, nullptr, log, W)
+                                           : serial_forces(m, allow_breaking, nullptr, log, W);
+  apply_ghost_correction(m, nullptr);
+  return b;
 }
 
 std::size_t internal_forces_rows(Model& m, bool allow_breaking, const std::vector<std::uint32_t>& rows,
                                  std::vector<std::uint64_t>* log, std::vector<double>* W) {
-  if (m.partition.active) return distributed_forces(m, allow_breaking, &rows, log, W);
-  return serial_forces(m, allow_breaking, &rows, log, W);
+  const std::size_t b = m.partition.active ? distributed_forces(m, allow_breaking, &rows, log, W)
+                                           : serial_forces(m, allow_breaking, &rows, log, W);
+  apply_ghost_correction(m, &rows);
+  return b;
 }
 
 void energy_density(const Model& m, std::vector<double>& W) {
