@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Checkpoint / restart. For a uniform deck, an adaptive one (damage trigger with step redo,
-# two-rate stepping) and, when given, one with a rigid impactor (its motion is solver state) and
-# one with several materials (each node's block is model state): a
+# two-rate stepping) and, when given, one with a rigid impactor (its motion is solver state),
+# one with several materials (each node's block is model state) and an adaptive LPS deck run
+# with adapt.ghost_correction (the restart builds the table whole, the run built it per event): a
 # run stopped by SIGTERM mid-way writes checkpoint.bin and exits 143; a run
 # killed by SIGKILL leaves its last periodic checkpoint (output.checkpoint_every). Each restarts
 # with --restart and must end bit for bit where an uninterrupted run ends: history.csv and
@@ -9,7 +10,7 @@
 # crack_speed.csv and summary.json (all but timings and paths). Then the refusals: another deck,
 # a truncated file, a file that is no checkpoint.
 set -u
-bin="$1"; uniform="$2"; adaptive="$3"; impact="${4:-}"; blocks="${5:-}"; fail=0
+bin="$1"; uniform="$2"; adaptive="$3"; impact="${4:-}"; blocks="${5:-}"; ghost="${6:-}"; fail=0
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 threads=2
 ok() { echo "ok   $*"; }
@@ -66,7 +67,9 @@ wait_for_step() {  # pid, folder, step
 
 # The impactor deck runs 15 us in a tenth of a second: longer here, so that a signal lands mid-run.
 [[ -n $impact ]] && sed 's/end_time: 1.5e-5/end_time: 1.0e-4/' "$impact" > "$tmp/impact.yaml" && impact="$tmp/impact.yaml"
-for case in uniform adaptive ${impact:+impact} ${blocks:+blocks}; do
+[[ -n $ghost ]] && sed 's/^adapt: {max_level: 1}/adapt: {max_level: 1, ghost_correction: true}/' "$ghost" > "$tmp/ghost.yaml" && ghost="$tmp/ghost.yaml"
+[[ -z $ghost ]] || grep -q "ghost_correction: true" "$ghost" || { bad "ghost: no adapt line to extend"; ghost=""; }
+for case in uniform adaptive ${impact:+impact} ${blocks:+blocks} ${ghost:+ghost}; do
   deck=${!case}
   steps=$("$bin" check "$deck" | sed -n "s/^steps  *\([0-9][0-9]*\) .*/\1/p" | head -1)
   [[ $steps =~ ^[0-9]+$ ]] || { bad "$case: no step count from check"; continue; }
