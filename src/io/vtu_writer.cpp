@@ -132,15 +132,20 @@ void VtuSeries::write_vtu(const std::string& path, const NodeSet& ns,
   std::vector<std::uint8_t> types(n, 1);  // VTK_VERTEX
   add_block(types.data(), n);
 
-  std::uint64_t offset = 0;
+  // The blocks go into the appended section in the reverse of the tags' order. A reader that
+  // walks the blocks in file order and looks each one's tag up by its offset while it rewrites
+  // the offsets of the tags done (meshio) then always meets the tag of the block in hand first:
+  // in tag order every such rewritten offset could equal a later block's, and did for a third of
+  // all node counts.
+  std::vector<std::uint64_t> offsets(blocks.size(), 0);
+  for (std::size_t k = blocks.size(); k-- > 1;) offsets[k - 1] = offsets[k] + blocks[k].size();
   std::size_t next = 0;
   std::string header;
   auto array_tag = [&](const std::string& type, const std::string& nm, int comps) {
     header += fmt::format(
         "        <DataArray type=\"{}\" Name=\"{}\" NumberOfComponents=\"{}\" "
         "format=\"appended\" offset=\"{}\"/>\n",
-        type, nm, comps, offset);
-    offset += blocks[next++].size();
+        type, nm, comps, offsets[next++]);
   };
   header += "<?xml version=\"1.0\"?>\n";
   header += fmt::format(
@@ -160,7 +165,8 @@ void VtuSeries::write_vtu(const std::string& path, const NodeSet& ns,
             "  <AppendedData encoding=\"raw\">\n_";
   write_file_atomically(path, [&](std::ostream& out) {
     out << header;
-    for (const std::string& b : blocks) out.write(b.data(), static_cast<std::streamsize>(b.size()));
+    for (std::size_t k = blocks.size(); k-- > 0;)
+      out.write(blocks[k].data(), static_cast<std::streamsize>(blocks[k].size()));
     out << "\n  </AppendedData>\n</VTKFile>\n";
   }, true);
 }
