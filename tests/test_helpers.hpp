@@ -17,6 +17,17 @@
 
 namespace periadapt::test {
 
+// The active 2D nodes of `level` within r (per axis) of (cx, cy): parents for refine_nodes.
+inline std::vector<std::uint32_t> active_near(const NodeSet& ns, double cx, double cy, double r,
+                                              int level) {
+  std::vector<std::uint32_t> out;
+  for (std::uint32_t i = 0; i < ns.size(); ++i)
+    if ((ns.flags[i] & kActive) && ns.level[i] == level && std::abs(ns.x[0][i] - cx) < r &&
+        std::abs(ns.x[1][i] - cy) < r)
+      out.push_back(i);
+  return out;
+}
+
 // A box region, {box: {min: lo, max: hi}} (loads, boundary conditions, holes, no_fail zones,
 // refinement zones).
 inline DeckBuilder box(const std::vector<double>& lo, const std::vector<double>& hi) {

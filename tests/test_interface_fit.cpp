@@ -206,19 +206,11 @@ TEST(GhostCorrection, TableUpdatedEventByEventEqualsTheWholeTable) {
     AdaptSpec spec;
     spec.enabled = true;
     spec.max_level = 2;
-    const auto near = [&](double cx, double cy, double r, int level) {
-      std::vector<std::uint32_t> out;
-      for (std::uint32_t i = 0; i < m.nodes.size(); ++i)
-        if ((m.nodes.flags[i] & kActive) && m.nodes.level[i] == level &&
-            std::abs(m.nodes.x[0][i] - cx) < r && std::abs(m.nodes.x[1][i] - cy) < r)
-          out.push_back(i);
-      return out;
-    };
-    refine_nodes(m, near(0.003, 0.008, 0.003, 0), spec);
+    refine_nodes(m, test::active_near(m.nodes, 0.003, 0.008, 0.003, 0), spec);
     update_ghost_table(m);
-    refine_nodes(m, near(0.003, 0.008, 0.0012, 1), spec);
+    refine_nodes(m, test::active_near(m.nodes, 0.003, 0.008, 0.0012, 1), spec);
     update_ghost_table(m);
-    refine_nodes(m, near(0.016, 0.008, 0.002, 0), spec);
+    refine_nodes(m, test::active_near(m.nodes, 0.016, 0.008, 0.002, 0), spec);
     update_ghost_table(m);
     const GhostTable events = m.ghost;
     m.ghost.rebuild_all = true;

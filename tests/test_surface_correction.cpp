@@ -17,6 +17,7 @@
 #include "studies/plate_error_profiles.hpp"
 #include "run/static_run.hpp"
 #include "setup/build_model.hpp"
+#include "test_helpers.hpp"
 
 using namespace periadapt;
 
@@ -184,17 +185,9 @@ Model refined_plate(const std::string& correction, bool global) {
   AdaptSpec spec;
   spec.enabled = true;
   spec.max_level = 2;
-  const auto near = [&](double cx, double cy, double r, int level) {
-    std::vector<std::uint32_t> out;
-    for (std::uint32_t i = 0; i < m.nodes.size(); ++i)
-      if ((m.nodes.flags[i] & kActive) && m.nodes.level[i] == level &&
-          std::abs(m.nodes.x[0][i] - cx) < r && std::abs(m.nodes.x[1][i] - cy) < r)
-        out.push_back(i);
-    return out;
-  };
-  refine_nodes(m, near(0.003, 0.008, 0.003, 0), spec);
-  refine_nodes(m, near(0.002, 0.008, 0.0012, 1), spec);
-  refine_nodes(m, near(0.015, 0.008, 0.002, 0), spec);
+  refine_nodes(m, test::active_near(m.nodes, 0.003, 0.008, 0.003, 0), spec);
+  refine_nodes(m, test::active_near(m.nodes, 0.002, 0.008, 0.0012, 1), spec);
+  refine_nodes(m, test::active_near(m.nodes, 0.015, 0.008, 0.002, 0), spec);
   unsetenv("PERIADAPT_GLOBAL_REBUILD");
   return m;
 }

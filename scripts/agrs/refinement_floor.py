@@ -17,7 +17,6 @@ interface rows) and peaks between snapshots, so the true requirement is higher.
 
 usage: refinement_floor.py BUILD/periadapt OUT_DIR [--only a,b] [--snapshots N] [--decks DIR]
 """
-import argparse
 import csv
 import glob
 import math
@@ -27,7 +26,7 @@ import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from suite import DECKS, variant  # noqa: E402
+from suite import deck_names, suite_arguments, variant  # noqa: E402
 from vtu import read_vtu  # noqa: E402
 
 LEVEL = 1.0 / math.sqrt(2.0)   # the coarse grid's s0 in units of the fine grid's
@@ -54,16 +53,10 @@ def fine_run(exe, text, out, snapshots):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument('exe')
-    ap.add_argument('out')
-    ap.add_argument('--only', default='')
+    ap = suite_arguments()
     ap.add_argument('--snapshots', type=int, default=150)
-    ap.add_argument('--decks', default=DECKS)
     a = ap.parse_args()
-    names = sorted(f[:-5] for f in os.listdir(a.decks) if f.endswith('.yaml'))
-    if a.only:
-        names = [n for n in names if n in a.only.split(',')]
+    names = deck_names(a)
     os.makedirs(a.out, exist_ok=True)
     print('| problem | fine nodes | must be fine at initiation | node floor | ever | node floor '
           '| at the end | node floor |')

@@ -102,21 +102,31 @@ def hausdorff(a, b):
     return max(directed_hausdorff(a, b), directed_hausdorff(b, a))
 
 
-def main():
+def suite_arguments():
+    """The arguments every suite script takes: the executable, the output folder, --only, --decks."""
     ap = argparse.ArgumentParser()
     ap.add_argument('exe')
     ap.add_argument('out')
     ap.add_argument('--only', default='')
+    ap.add_argument('--decks', default=DECKS)
+    return ap
+
+
+def deck_names(a):
+    """The decks of a.decks (without .yaml), those of --only if given."""
+    names = sorted(f[:-5] for f in os.listdir(a.decks) if f.endswith('.yaml'))
+    return [n for n in names if n in a.only.split(',')] if a.only else names
+
+
+def main():
+    ap = suite_arguments()
     ap.add_argument('--repeat', type=int, default=1)
     ap.add_argument('--threads', type=int, default=0)
     ap.add_argument('--table', default='')
     ap.add_argument('--check', action='store_true')
     ap.add_argument('--no-wall', action='store_true')
-    ap.add_argument('--decks', default=DECKS)
     a = ap.parse_args()
-    names = sorted(f[:-5] for f in os.listdir(a.decks) if f.endswith('.yaml'))
-    if a.only:
-        names = [n for n in names if n in a.only.split(',')]
+    names = deck_names(a)
     os.makedirs(a.out, exist_ok=True)
     lines = ['| problem | run | nodes | path (fine dx) | damage sum | ratio | initiation (us) | '
              'error | nodes / fine | wall / fine |',
