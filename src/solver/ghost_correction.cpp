@@ -26,8 +26,9 @@ void component(int dim, int c, int& p, int& q) {
 
 int components_of(int dim) { return dim == 1 ? 1 : dim == 2 ? 3 : 6; }
 
-// Whether the row and, for a state-based law, its neighbours have every bond intact (the same
-// test when the table is built and when it is applied, so updates and restarts agree).
+// Whether the row's correction applies: the row and, for a state-based law, its neighbours have
+// every bond intact (a crack within them is no uniform strain). Checked when the table is
+// applied, so a table built before a bond broke and one built after act alike.
 bool uncut(const Model& m, std::uint32_t i) {
   const NodeSet& ns = m.nodes;
   if (ns.broken_weight[i] > 0) return false;
