@@ -220,7 +220,9 @@ void apply_ghost_correction(Model& m, const std::vector<std::uint32_t>* rows) {
   auto one = [&](std::size_t r) {
     const std::uint32_t i = g.rows[r];
     if (!(ns.flags[i] & kActive) || !uncut(m, i)) return;
-    // Displacement gradient H = (sum (u_j - u_i) (x) xi) K^-1 over the row's bonds.
+    // Displacement gradient H = (sum (u_j - u_i) (x) xi) K^-1 over the row's bonds, from the
+    // positions the pass used (core/visible_gradient reads u, which a multi-rate slow row's drift
+    // has left behind, and forms its moment matrix again each time).
     double A[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
     for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {
       const std::uint32_t j = bf.neighbor[k];
