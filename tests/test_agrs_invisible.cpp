@@ -258,6 +258,27 @@ TEST(AgrsInvisible, TheTimeStepAccountsForTheFinestLevelBeforeTheRun) {
   }
 }
 
+TEST(AgrsInvisible, TheDefaultStepHoldsWhenAnInitialZoneAtAFreeEdgeLimitsItNow) {
+  // An initial zone along the free right edge only (no visibility): its surface children miss
+  // bonds and limit nothing, so the bound now comes from a level-1 edge node, while the interior
+  // coarse nodes will become level-1 interior nodes, stiffer, at the first event. The default
+  // step must hold on the plate refined everywhere.
+  DeckBuilder fine = plate(0.5e-3, 2e6);
+  const Deck fine_deck = fine.build("plate");
+  const TimeStepChoice all_fine = choose_time_step(fine_deck, build_model(fine_deck));
+  DeckBuilder edge = plate(1e-3, 2e6);
+  edge.set("solver", DeckBuilder().set("type", "explicit").set("steps", 400))
+      .set("adapt.stretch_trigger", 0.5)
+      .set("adapt.visibility", false)
+      .append("adapt.initial_refinement",
+              DeckBuilder().set("region", test::box({0.029, 0.0}, {0.03, 0.03})).set("level", 1));
+  const Deck dk = edge.build("plate");
+  const Model m = build_model(dk);
+  const TimeStepChoice ts = choose_time_step(dk, m);
+  EXPECT_EQ(m.nodes.level[ts.limiting_node], 1);  // what made the old ratio 1
+  EXPECT_LE(ts.dt, 0.8 * all_fine.dt_crit * (1 + 1e-12));
+}
+
 TEST(AgrsInvisible, TheStretchTheForcePassTracksFlagsTheNodesASweepFlags) {
   // Plain PMB: the stretch trigger reads each row's largest breakable stretch from the force pass
   // instead of a sweep of its own. Under a load that flags some nodes and not others, both must

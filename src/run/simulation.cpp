@@ -58,12 +58,18 @@ TimeStepChoice choose_time_step(const Deck& dk, const Model& m) {
   if (dk.adapt.enabled && dk.solver == Deck::SolverType::Explicit) {
     // The stable step scales with the horizon (sum_j C_ij V_j ~ c delta^(dim-1) ~ 1/delta^2):
     // the finest level's bound applies from the first event on, so it is checked (and the
-    // default step chosen) now rather than when the first refinement happens. Relative to the
-    // horizon of the node that limits the step now: after an initial refinement that node may
-    // already be on a finer level.
-    const double h_lim = m.nodes.horizon[s.node];
-    for (int l = 1; l <= dk.adapt.max_level; ++l)
-      c.level_ratio = std::min(c.level_ratio, level_horizon(m, dk.adapt, l) / h_lim);
+    // default step chosen) now rather than when the first refinement happens. Each node's bound
+    // is scaled from its own horizon (after an initial refinement some are on a finer level).
+    const NodeSet& ns = m.nodes;
+    std::vector<double> finest(static_cast<std::size_t>(dk.adapt.max_level) + 1);
+    for (int l = dk.adapt.max_level; l >= 0; --l)
+      finest[l] = std::min(level_horizon(m, dk.adapt, l),
+                           l < dk.adapt.max_level ? finest[l + 1] : INFINITY);
+    std::vector<double> scale(ns.size(), 1.0);
+    for (std::size_t i = 0; i < ns.size(); ++i)
+      if (ns.horizon[i] > 0 && ns.level[i] <= dk.adapt.max_level)
+        scale[i] = std::min(1.0, finest[static_cast<std::size_t>(ns.level[i])] / ns.horizon[i]);
+    c.level_ratio = std::min(1.0, scaled_stable_time_step(m, scale).dt / s.dt);
   }
   if (dk.time_step) {
     if (*dk.time_step > s.dt && !dk.allow_unstable_time_step)

@@ -9,7 +9,10 @@
 
 namespace periadapt {
 
-StableStep stable_time_step(const Model& model) {
+namespace {
+
+// sum_j C_ij V_j per node, with the contact and impactor bounds.
+std::vector<double> stiffness_sums(const Model& model) {
   std::vector<double> K;
   material_stiffness_sum(model.nodes, model.bonds, material_context(model), K);
   if (model.contact.enabled)
@@ -18,13 +21,26 @@ StableStep stable_time_step(const Model& model) {
   if (!model.impactors.empty())
     for (std::size_t i = 0; i < K.size(); ++i)
       if (model.nodes.flags[i] & kActive) K[i] += impactor_stiffness_bound(model.impactors, model.nodes, i);
+  return K;
+}
+
+StableStep smallest_step(const Model& model, const std::vector<double>* scale) {
+  const std::vector<double> K = stiffness_sums(model);
   StableStep best{std::numeric_limits<double>::infinity(), 0};
   for (std::size_t i = 0; i < K.size(); ++i) {
     if (!(model.nodes.flags[i] & kActive) || K[i] <= 0) continue;
-    const double dt = std::sqrt(2.0 * model.nodes.density[i] / K[i]);
+    const double dt = std::sqrt(2.0 * model.nodes.density[i] / K[i]) * (scale ? (*scale)[i] : 1.0);
     if (dt < best.dt) best = {dt, i};
   }
   return best;
+}
+
+}  // namespace
+
+StableStep stable_time_step(const Model& model) { return smallest_step(model, nullptr); }
+
+StableStep scaled_stable_time_step(const Model& model, const std::vector<double>& scale) {
+  return smallest_step(model, &scale);
 }
 
 StableStep stable_time_step(const Model& model, const std::vector<std::uint32_t>& nodes) {
