@@ -49,46 +49,62 @@ void fit_kinematic_gradients(const NodeSet& ns, const BondFamilies& bf, std::uin
   fit_gradient(ns, bf, p, ns.a, G[2]);
 }
 
+namespace {
+
+// Adds node j's u, v, a extrapolated by its gradients G over `off` to u, v, a.
+void add_extrapolation(const NodeSet& ns, std::uint32_t j, const double G[3][3][3],
+                       const double off[3], double u[3], double v[3], double a[3]) {
+  for (int d = 0; d < 3; ++d) {
+    double du = 0, dv = 0, da = 0;
+    for (int e = 0; e < ns.dim; ++e) {
+      du += G[0][d][e] * off[e];
+      dv += G[1][d][e] * off[e];
+      da += G[2][d][e] * off[e];
+    }
+    u[d] += ns.u[d][j] + du;
+    v[d] += ns.v[d][j] + dv;
+    a[d] += ns.a[d][j] + da;
+  }
+}
+
+}  // namespace
+
 bool interpolate_new_node(const Model& m, const CrackMemory& memory, std::uint32_t p,
                           const double G[3][3][3], const double offset[3], const Vec3& pos,
                           double u[3], double v[3], double a[3]) {
   const NodeSet& ns = m.nodes;
   const BondFamilies& bf = m.bonds;
-  const int D = ns.dim;
-  std::uint32_t anchor = p;
+  for (int d = 0; d < 3; ++d) u[d] = v[d] = a[d] = 0;
   const Vec3 xp{ns.x[0][p], ns.x[1][p], ns.x[2][p]};
-  if (sight_blocked(m, memory, xp, pos)) {
-    double best = INFINITY;
+  // The nearest old nodes it can see when the parent is hidden, all of those at the nearest
+  // distance (to round-off): on a lattice several often are, and taking the first in bond order
+  // would give mirror-image children different fields. Their extrapolations are averaged.
+  std::vector<std::pair<double, std::uint32_t>> seen;
+  if (sight_blocked(m, memory, xp, pos))
     for (std::uint64_t k = bf.begin(p); k < bf.end(p); ++k) {
       const std::uint32_t j = bf.neighbor[k];
       if (!(ns.flags[j] & kActive)) continue;
       const Vec3 xj{ns.x[0][j], ns.x[1][j], ns.x[2][j]};
-      const double dj = norm(sub(xj, pos));
-      if (dj < best && !sight_blocked(m, memory, xj, pos)) best = dj, anchor = j;
+      if (!sight_blocked(m, memory, xj, pos)) seen.emplace_back(norm(sub(xj, pos)), j);
     }
+  if (seen.empty()) {
+    add_extrapolation(ns, p, G, offset, u, v, a);
+    return false;
   }
-  double Gj[3][3][3];
-  double off[3] = {0, 0, 0};
-  const double (*g)[3][3] = G;
-  if (anchor == p) {
-    for (int e = 0; e < D; ++e) off[e] = offset[e];
-  } else {
-    fit_kinematic_gradients(ns, bf, anchor, Gj);
-    g = Gj;
-    for (int e = 0; e < D; ++e) off[e] = pos[static_cast<std::size_t>(e)] - ns.x[e][anchor];
+  double best = INFINITY;
+  for (const auto& s : seen) best = std::min(best, s.first);
+  int count = 0;
+  for (const auto& [dist, j] : seen) {
+    if (dist > best * (1 + 1e-9)) continue;
+    double Gj[3][3][3];
+    fit_kinematic_gradients(ns, bf, j, Gj);
+    double off[3] = {0, 0, 0};
+    for (int e = 0; e < ns.dim; ++e) off[e] = pos[static_cast<std::size_t>(e)] - ns.x[e][j];
+    add_extrapolation(ns, j, Gj, off, u, v, a);
+    ++count;
   }
-  for (int d = 0; d < 3; ++d) {
-    double du = 0, dv = 0, da = 0;
-    for (int e = 0; e < D; ++e) {
-      du += g[0][d][e] * off[e];
-      dv += g[1][d][e] * off[e];
-      da += g[2][d][e] * off[e];
-    }
-    u[d] = ns.u[d][anchor] + du;
-    v[d] = ns.v[d][anchor] + dv;
-    a[d] = ns.a[d][anchor] + da;
-  }
-  return anchor != p;
+  for (int d = 0; d < 3; ++d) u[d] /= count, v[d] /= count, a[d] /= count;
+  return true;
 }
 
 void inherit_loads_and_motions(Model& m, std::size_t n0, const std::vector<char>& is_parent,

@@ -30,7 +30,8 @@ bool sight_blocked(const Model& m, const CrackMemory& memory, const Vec3& a, con
 // u, v and a of a new node at `pos` created from parent p (gradients G): the parent's values
 // plus G times `offset` when the node can see its parent; otherwise (the node lies across a crack
 // from it) the values of the nearest old node of the parent's family that it can see, plus that
-// node's own gradient times the distance to it. Returns true in the second case. Reads only
+// node's own gradient times the distance to it (the mean over the nearest ones where several
+// are equally near). Returns true in the second case. Reads only
 // nodes that are still active, so call it before any parent is switched off.
 bool interpolate_new_node(const Model& m, const CrackMemory& memory, std::uint32_t p,
                           const double G[3][3][3], const double offset[3], const Vec3& pos,
