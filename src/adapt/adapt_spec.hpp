@@ -60,6 +60,7 @@ struct AdaptSpec {
   bool coarsen = false;                   // return quiet refined zones to their parents
   double visibility_factor = 1.0;         // visibility radius in horizons of the flagged node
   bool conserve_energy = false;           // rescale rebuilt rows' velocities so events keep K + U
+  int relax_sweeps = 0;  // Jacobi sweeps relaxing each event's rebuilt rows (adapt/event_relaxation.hpp)
   // Loaded nodes are refined with the nodes bonded to them, their children carrying the load
   // (method B; off: loaded nodes are never refined, thesis MSc 2.1).
   bool refine_loads = false;

@@ -8,6 +8,7 @@
 #include <chrono>
 
 #include "adapt/coarsen.hpp"
+#include "adapt/event_relaxation.hpp"
 #include "analysis/energy.hpp"
 #include "core/cell_grid.hpp"
 #include "adapt/triggers.hpp"
@@ -107,7 +108,9 @@ void Adaptor::refine(const std::vector<std::uint32_t>& parents, std::size_t iden
   vv_.synchronize_velocities();
   const double h0 = spec_.conserve_energy ? total_energy() : 0.0;
   refinable_valid_ = false;
+  const std::size_t first_new = m_.nodes.size();
   ev.stats = refine_nodes(m_, parents, spec_, spec_.refine_loads);
+  const std::vector<std::uint32_t> moved = relax_event_rows(m_, first_new, spec_.relax_sweeps);
   if (spec_.conserve_energy) restore_energy(h0, ev.stats.rebuilt);
   std::size_t active = 0;
   for (auto f : m_.nodes.flags) active += (f & kActive) != 0;
@@ -121,7 +124,15 @@ void Adaptor::refine(const std::vector<std::uint32_t>& parents, std::size_t iden
         "refinement at t = {:.4e} s made the time step unstable: dt = {:.4e} s exceeds the stable "
         "step {:.4e} s of the refined grid (node {}, level {}); lower solver.time_step",
         vv_.time(), vv_.dt(), s.dt, s.node, static_cast<int>(m_.nodes.level[s.node])));
-  vv_.refresh(&ev.stats.rebuilt);
+  if (moved.empty()) {
+    vv_.refresh(&ev.stats.rebuilt);
+  } else {
+    std::vector<std::uint32_t> rows = ev.stats.rebuilt;
+    rows.insert(rows.end(), moved.begin(), moved.end());
+    std::sort(rows.begin(), rows.end());
+    rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
+    vv_.refresh(&rows);
+  }
   // The event's cost includes the refresh (forces of the rebuilt rows, their step rates).
   events_.back().stats.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -259,6 +259,9 @@ void parse_adapt(Section& top, Deck& dk) {
     ad.total_energy = a->choice("energy", {"strain", "total"}, "strain") == "total";
     ad.coarsen = a->boolean("coarsen", false);
     ad.conserve_energy = a->boolean("conserve_energy", false);
+    ad.relax_sweeps = static_cast<int>(a->integer("relax_sweeps", 0, [](long v) {
+      return (v >= 0 && v <= 100) ? std::string() : std::string("must be in 0 ... 100");
+    }));
     if (ad.coarsen && ad.method == NodeGeneration::A)
       a->fail("coarsen", "coarsening restores parents from their children (method b); method a "
                          "keeps the parents and is not coarsened");
@@ -277,6 +280,9 @@ void parse_adapt(Section& top, Deck& dk) {
       a->fail("", "give at least one trigger (stretch_trigger: fraction of the critical stretch, "
                   "energy_trigger: fraction of W_max, damage_trigger: true) or an "
                   "initial_refinement zone");
+    if (ad.relax_sweeps > 0 && !ad.enabled)
+      a->fail("relax_sweeps", "relaxes the events of a run's triggers; initial_refinement zones "
+                              "are made before any field exists (give a trigger, or leave it out)");
     if (ad.enabled && dk.solver != Deck::SolverType::Explicit)
       a->fail("", "refinement triggers work with the explicit solver only; static and relaxation "
                   "runs take initial_refinement zones");

@@ -1,0 +1,58 @@
+#include "adapt/event_relaxation.hpp"
+
+#include "solver/internal_forces.hpp"
+
+namespace periadapt {
+
+std::vector<std::uint32_t> relax_event_rows(Model& m, std::size_t first_new, int sweeps) {
+  NodeSet& ns = m.nodes;
+  const BondFamilies& bf = m.bonds;
+  const std::size_t n = ns.size();
+  if (sweeps <= 0 || first_new >= n) return {};
+  // Which rows: selected by the bonds, not by a search radius, so that a mirror-symmetric grid
+  // gets a mirror-symmetric set (a radius test decides nodes at its edge by round-off).
+  std::vector<char> relax(n, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!(ns.flags[i] & kActive)) continue;
+    bool near_new = i >= first_new;
+    for (std::uint64_t k = bf.begin(i); k < bf.end(i) && !near_new; ++k)
+      near_new = bf.neighbor[k] >= first_new;
+    relax[i] = near_new && !(ns.flags[i] & kBoundary);
+  }
+  for (const BodyLoad& l : m.loads)
+    for (std::uint32_t i : l.nodes) relax[i] = 0;
+  std::vector<std::uint32_t> rows;
+  std::vector<char> touched(n, 0);
+  for (std::size_t i = 0; i < n; ++i)
+    if (relax[i]) {
+      rows.push_back(static_cast<std::uint32_t>(i));
+      touched[i] = 1;
+      for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) touched[bf.neighbor[k]] = 1;
+    }
+  if (rows.empty()) return {};
+  // The diagonal of the bond stiffness is at most the stiffness sum (a bond along one axis puts
+  // all of its spring there), and twice the sum bounds the whole stiffness (Gershgorin): dividing
+  // by the sum, the sweeps cannot overshoot.
+  const MaterialContext ctx = material_context(m);
+  std::vector<double> K(rows.size());
+  for (std::size_t r = 0; r < rows.size(); ++r) K[r] = material_stiffness_row(ns, bf, ctx, rows[r]);
+  const bool row_local = m.formulation.row_local();
+  for (int s = 0; s < sweeps; ++s) {
+    if (row_local)
+      internal_forces_rows(m, false, rows);
+    else
+      internal_forces(m, false);
+    for (std::size_t r = 0; r < rows.size(); ++r) {
+      const std::uint32_t i = rows[r];
+      if (!(K[r] > 0)) continue;
+      for (int d = 0; d < ns.dim; ++d) ns.u[d][i] += (ns.f[d][i] - ns.density[i] * ns.a[d][i]) / K[r];
+    }
+    for (std::uint32_t i : rows) ns.sync_current(i);
+  }
+  std::vector<std::uint32_t> out;
+  for (std::size_t i = 0; i < n; ++i)
+    if (touched[i]) out.push_back(static_cast<std::uint32_t>(i));
+  return out;
+}
+
+}  // namespace periadapt
