@@ -262,7 +262,7 @@ TEST(AgrsInvisible, RelaxedChildrenStartCloserToTheRefinedGridsBalance) {
     std::vector<double> before;
     for (std::uint32_t i : held)
       for (int d = 0; d < 2; ++d) before.push_back(ns.u[d][i]);
-    relax_event_rows(m, first_new, sweeps);
+    relax_event_rows(m, st.rebuilt, first_new, sweeps);
     Result r{0, 0};
     for (std::size_t k = 0; k < held.size(); ++k)
       for (int d = 0; d < 2; ++d)

@@ -110,7 +110,7 @@ void Adaptor::refine(const std::vector<std::uint32_t>& parents, std::size_t iden
   refinable_valid_ = false;
   const std::size_t first_new = m_.nodes.size();
   ev.stats = refine_nodes(m_, parents, spec_, spec_.refine_loads);
-  const std::vector<std::uint32_t> moved = relax_event_rows(m_, first_new, spec_.relax_sweeps);
+  const std::vector<std::uint32_t> moved = relax_event_rows(m_, ev.stats.rebuilt, first_new, spec_.relax_sweeps);
   if (spec_.conserve_energy) restore_energy(h0, ev.stats.rebuilt);
   std::size_t active = 0;
   for (auto f : m_.nodes.flags) active += (f & kActive) != 0;

@@ -12,9 +12,11 @@
 
 namespace periadapt {
 
-// Relaxes the active nodes from `first_new` on and the rows bonded to them, except those that
-// carry a load or a prescribed motion; returns the nodes whose forces the sweeps changed (the
-// relaxed rows and every row bonded to them, ascending; empty without sweeps).
-std::vector<std::uint32_t> relax_event_rows(Model& m, std::size_t first_new, int sweeps);
+// Relaxes the event's new nodes (ids from `first_new` on) and the rows bonded to them, among
+// the rows it rebuilt, except those that carry a load or a prescribed motion; returns the nodes
+// whose forces the sweeps changed (the relaxed rows and every row bonded to them, ascending;
+// empty without sweeps).
+std::vector<std::uint32_t> relax_event_rows(Model& m, const std::vector<std::uint32_t>& rebuilt,
+                                            std::size_t first_new, int sweeps);
 
 }  // namespace periadapt
