@@ -8,11 +8,15 @@ spacings), damage-sum ratio, initiation time (first bond broken after the pre-cr
 active nodes and wall time as ratios to the fine run (smallest of --repeat alternating runs).
 
 usage: suite.py BUILD/periadapt OUT_DIR [--only a,b] [--repeat N] [--threads N] [--table FILE]
-                [--check] [--no-wall] [--decks DIR]
+                [--check] [--no-wall] [--decks DIR] [--adapt KEY=VALUE ...] [--moving-patches]
 --check: exit 1 unless every adaptive run meets the acceptance bounds below.
 --decks: the decks to run (default bench/agrs; e.g. a copy with another option set).
 --no-wall: leave the wall-time bound out of --check (CI: speed is measured by benchmarks, on a
            quiet machine, not asserted by tests).
+--adapt: sets a key of the adaptive runs' adapt section (repeatable), e.g. relax_sweeps=5.
+--moving-patches: the adaptive runs also refine every moving boundary-condition region (an
+           expression of t) from the start: an initial_refinement zone each, with the
+           automatic profile's triggers restated (a zone switches the profile off).
 """
 import argparse
 import bisect
@@ -35,10 +39,33 @@ CRACKED = 0.35
 BOUNDS = {'path': 3.0, 'damage': 0.15, 'init': 0.05, 'nodes': 0.5, 'wall': 0.6}
 
 
-def variant(text, kind):
+# The automatic profile's keys (docs/deck-reference.md, `adapt`), restated where a deck adds an
+# initial zone.
+PROFILE = 'stretch_trigger: 0.5, damage_trigger: true, interface_horizon: true, refine_loads: true'
+
+
+def with_moving_patches(text):
+    """The adaptive deck with an initial level-1 zone over each moving boundary condition."""
+    import yaml  # only this option needs it
+    deck = yaml.safe_load(text)
+    zones = []
+    for bc in deck.get('boundary_conditions') or []:
+        values = bc.get('velocity') or bc.get('displacement') or []
+        if any(isinstance(v, str) and re.search(r'\bt\b', v) for v in values):
+            zones.append({'region': bc['region'], 'level': 1})
+    if not zones:
+        return text
+    flow = yaml.safe_dump(zones, default_flow_style=True, width=100000).strip()
+    out, n = re.subn(r'(?m)^adapt: \{max_level: 1\}$',
+                     'adapt: {max_level: 1, %s, initial_refinement: %s}' % (PROFILE, flow), text)
+    assert n == 1, 'the deck must end with adapt: {max_level: 1}'
+    return out
+
+
+def variant(text, kind, moving_patches=False):
     """The deck's text for 'coarse', 'fine' or 'adaptive'."""
     if kind == 'adaptive':
-        return text
+        return with_moving_patches(text) if moving_patches else text
     out = re.sub(r'(?m)^adapt:.*\n?', '', text)
     if kind == 'fine':
         def half(m):
@@ -52,10 +79,12 @@ def spacing_of(text):
     return float(re.search(r'(?m)^\s*spacing:\s*([0-9.eE+-]+)', text).group(1))
 
 
-def run(exe, deck_path, out, threads):
+def run(exe, deck_path, out, threads, settings=()):
     cmd = [exe, 'run', deck_path, '--out', out, '--quiet']
     if threads:
         cmd += ['--threads', str(threads)]
+    for kv in settings:
+        cmd += ['--set', kv]
     r = subprocess.run(cmd, capture_output=True, text=True)
     if r.returncode != 0:
         raise RuntimeError('%s failed (%d): %s' % (deck_path, r.returncode, r.stderr.strip()))
@@ -125,7 +154,10 @@ def main():
     ap.add_argument('--table', default='')
     ap.add_argument('--check', action='store_true')
     ap.add_argument('--no-wall', action='store_true')
+    ap.add_argument('--adapt', action='append', default=[])
+    ap.add_argument('--moving-patches', action='store_true')
     a = ap.parse_args()
+    adapt_settings = ['adapt.' + kv for kv in a.adapt]
     names = deck_names(a)
     os.makedirs(a.out, exist_ok=True)
     lines = ['| problem | run | nodes | path (fine dx) | damage sum | ratio | initiation (us) | '
@@ -138,14 +170,15 @@ def main():
         res = {}
         for kind in ('coarse', 'fine', 'adaptive'):
             p = os.path.join(a.out, '%s_%s.yaml' % (name, kind))
-            open(p, 'w').write(variant(text, kind))
+            open(p, 'w').write(variant(text, kind, a.moving_patches))
         # Fine and adaptive alternate, so a slow spell of the machine hits both.
         res['coarse'] = run(a.exe, os.path.join(a.out, name + '_coarse.yaml'),
                             os.path.join(a.out, name + '_coarse'), a.threads)
         for _ in range(a.repeat):
             for kind in ('fine', 'adaptive'):
                 r = run(a.exe, os.path.join(a.out, '%s_%s.yaml' % (name, kind)),
-                        os.path.join(a.out, '%s_%s' % (name, kind)), a.threads)
+                        os.path.join(a.out, '%s_%s' % (name, kind)), a.threads,
+                        adapt_settings if kind == 'adaptive' else ())
                 if kind in res:
                     r['wall'] = min(r['wall'], res[kind]['wall'])
                 res[kind] = r
