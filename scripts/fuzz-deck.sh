@@ -13,11 +13,15 @@ if ! command -v clang++ > /dev/null; then
 fi
 mkdir -p "$out/corpus"
 flags=(-std=c++20 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -Isrc)
-clang++ "${flags[@]}" fuzz/deck_fuzzer.cpp fuzz/surface_mesh_stub.cpp src/input/deck*.cpp \
-  src/input/yaml_section.cpp src/input/point_cloud.cpp \
-  src/core/expression.cpp src/setup/memory_estimate.cpp src/material/micromodulus.cpp \
-  src/material/bond_laws.cpp src/material/formulation.cpp $(grep -l bond_law_kernel.hpp src/material/*.cpp) \
-  -lyaml-cpp -lmuparser -lfmt -o "$out/deck_fuzzer"
+sources=(fuzz/deck_fuzzer.cpp fuzz/surface_mesh_stub.cpp src/input/deck*.cpp
+  src/input/yaml_section.cpp src/input/point_cloud.cpp
+  src/core/expression.cpp src/setup/memory_estimate.cpp src/material/micromodulus.cpp
+  src/material/bond_laws.cpp src/material/formulation.cpp $(grep -l bond_law_kernel.hpp src/material/*.cpp))
+# One object per source, compiled side by side (one clang++ call compiles them one after another).
+rm -rf "$out/obj"; mkdir -p "$out/obj"
+printf '%s\n' "${sources[@]}" | sort -u | xargs -P "$(nproc)" -I{} sh -c \
+  'clang++ "$@" -c "{}" -o "'"$out"'/obj/$(echo "{}" | tr / _).o"' _ "${flags[@]}"
+clang++ "${flags[@]}" "$out"/obj/*.o -lyaml-cpp -lmuparser -lfmt -o "$out/deck_fuzzer"
 dict="$PWD/fuzz/deck.dict"
 seeds="$out/seeds"; rm -rf "$seeds"; mkdir -p "$seeds"
 cp examples/*.yaml tests/bad_decks/*.yaml bench/agrs/*.yaml "$seeds"/
