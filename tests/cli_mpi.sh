@@ -5,6 +5,7 @@
 # (the ranks' VTU pieces merged; hence the same broken bonds and displacements), summary.json but
 # timings, paths and the rank report. Then a
 # checkpoint written on 2 ranks (every 100 steps) restarts on 3 and ends as the serial run does;
+# where the ranks integrate their own regions (parallel/ghost_layer.hpp), they did so on some steps;
 # an output failure on rank 0 stops every rank with exit code 4.
 # Skipped (exit 0 with a note) in a build without MPI.
 set -u
@@ -89,6 +90,20 @@ while (($#)); do
     fi
     if r=$(same "$tmp/$name-1" "$out" 2>&1); then echo "ok   $name, $np ranks: $r"
     else echo "FAIL $name, $np ranks: $r"; fail=1; fi
+    # Owned integration (explicit runs without contact, impactors, overlay or ghost-force table):
+    # the equality above held with ranks that left nodes outside their region stale.
+    if r=$(python3 - "$out" <<'PY'
+import json, os, sys
+j = json.load(open(os.path.join(sys.argv[1], "summary.json")))
+r = j.get("ranks", {})
+if not r.get("owned_integration"): print("whole-model integration"); sys.exit(0)
+n = j["nodes"]["slots"]
+if r["region_steps"] < 1 or r["region_nodes_rank0"] >= n:
+    sys.exit(f"owned integration idle: {r}")
+print(f"{r['region_steps']} of {j['steps']} steps advanced rank 0's region alone "
+      f"({r['region_nodes_rank0']} of {n} nodes)")
+PY
+    ); then echo "ok   $name, $np ranks: $r"; else echo "FAIL $name, $np ranks: $r"; fail=1; fi
   done
   # Adaptive rebalancing: refinement events add children on their parent's rank; the imbalance
   # (largest rank's bonds over the mean, history.csv) stays within the deck's threshold, and at

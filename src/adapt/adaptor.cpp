@@ -1,5 +1,7 @@
 #include "adapt/adaptor.hpp"
 
+#include "parallel/mpi_env.hpp"
+
 #include "core/binary_archive.hpp"
 
 #include <fmt/core.h>
@@ -99,6 +101,7 @@ const std::vector<char>& Adaptor::refinable() {
 void Adaptor::refine(const std::vector<std::uint32_t>& parents, std::size_t identified,
                      const char* trigger) {
   if (parents.empty()) return;
+  vv_.sync_state();
   const auto t0 = std::chrono::steady_clock::now();
   RefinementEvent ev;
   ev.step = vv_.step_count();
@@ -206,7 +209,11 @@ bool Adaptor::step() {
   // old, as are its forces, and the rows idle at the check step need no pass of their own.
   const bool check_step = (vv_.step_count() + 1) % spec_.check_every == 0;
   const bool check = spec_.energy_fraction && check_step;
-  if (check && !vv_.multirate()) vv_.request_energy_at(vv_.step_count() + 1);
+  // Owned integration: the energy trigger reads each rank's own rows (owned_energy_check), so
+  // the step need not share every row's density.
+  const bool owned_check = vv_.owned_integration() && !spec_.coarsen;
+  vv_.set_owned_energy_checks(owned_check);
+  if (check && !vv_.multirate()) vv_.request_energy_at(vv_.step_count() + 1, !owned_check);
   if (spec_.damage_trigger) {
     vv_.set_undo(true);
     // Each pass refines by at most one level, so max_level + 1 passes always suffice.
@@ -237,12 +244,22 @@ bool Adaptor::step() {
   } else if (!vv_.step()) {
     return false;
   }
+  // The stretch trigger reads every row.
+  if (spec_.stretch_fraction && check_step) vv_.sync_state();
   if (spec_.stretch_fraction && check_step) {
     const std::vector<char>& refinable = this->refinable();
     const auto ids = stretch_trigger(m_, spec_, *spec_.stretch_fraction, refinable);
     refine(parents_for(ids, &refinable), ids.size(), "stretch");
   }
+  if (check && owned_check) {
+    if (const std::vector<double>* w = vv_.energy_density_of_owned_rows()) {
+      const auto ids = owned_energy_check(*w);
+      refine(parents_for(ids, &this->refinable()), ids.size(), "energy");
+      return true;
+    }
+  }
   if (check) {
+    vv_.sync_state();
     if (const std::vector<double>* w = vv_.energy_density_recent())
       W_ = *w;
     else
@@ -262,6 +279,39 @@ bool Adaptor::step() {
     refine(parents_for(ids, coarsened ? nullptr : &refinable), ids.size(), "energy");
   }
   return true;
+}
+
+std::vector<std::uint32_t> Adaptor::owned_energy_check(const std::vector<double>& W) {
+  // energy_trigger() over the rows this rank owns, then gathered: the same nodes in the same
+  // order, from the same values (a row's density and velocity are its owner's).
+  const NodeSet& ns = m_.nodes;
+  const std::vector<std::uint32_t>& rows = m_.partition.owned;
+  std::vector<double> E(rows.size());
+  double wmax = 0;
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    const std::uint32_t i = rows[k];
+    E[k] = W[i];
+    if (spec_.total_energy) {
+      double v2 = 0;
+      for (int d = 0; d < ns.dim; ++d) v2 += ns.v[d][i] * ns.v[d][i];
+      E[k] += 0.5 * ns.density[i] * v2;
+    }
+    if ((ns.flags[i] & kActive) && !(ns.flags[i] & kBoundary)) wmax = std::max(wmax, E[k]);
+  }
+  wmax = mpi::max_real(wmax);
+  std::vector<std::uint32_t> ids;
+  if (wmax > 0) {
+    const std::vector<char>& refinable = this->refinable();
+    const double alpha = *spec_.energy_fraction;
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      const std::uint32_t i = rows[k];
+      if ((refinable[i] || ((ns.flags[i] & kActive) && ns.level[i] > 0)) && E[k] >= alpha * wmax)
+        ids.push_back(i);
+    }
+  }
+  ids = mpi::all_gather(ids);
+  std::sort(ids.begin(), ids.end());
+  return ids;
 }
 
 void Adaptor::save_state(ArchiveWriter& w) const {

@@ -57,6 +57,8 @@ class Adaptor {
   void refine(const std::vector<std::uint32_t>& parents, std::size_t identified, const char* trigger);
   // Returns whether any parent was restored.
   bool coarsen_quiet(const std::vector<double>& E, double alpha);
+  // The energy trigger in a run with owned integration: from this rank's rows, gathered.
+  std::vector<std::uint32_t> owned_energy_check(const std::vector<double>& W);
   Model& m_;
   VelocityVerlet& vv_;
   AdaptSpec spec_;

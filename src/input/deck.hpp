@@ -125,6 +125,7 @@ struct Deck {
   bool dual_horizon = false;  // static solver: bonds act on both ends (dual-horizon form)
   PartitionMethod partition = PartitionMethod::Rcb;  // distributed runs: Zoltan's method
   double rebalance_threshold = 0.10;  // distributed runs: repartition past this imbalance
+  bool owned_integration = true;      // distributed explicit runs: each rank advances its region
   std::optional<double> time_step;
   double safety = 0.8;
   bool allow_unstable_time_step = false;

@@ -89,6 +89,7 @@ void parse_solver(Section& top, Deck& dk) {
                                     : std::string("must be in [0.01, 10] (largest rank's bonds over "
                                                   "the mean, less 1)");
     });
+    dk.owned_integration = s.boolean("owned_integration", true);
     s.finish();
   }
   if (auto c = top.optional_section("contact")) {

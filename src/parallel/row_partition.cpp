@@ -5,6 +5,7 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "parallel/ghost_layer.hpp"
 #include "parallel/mpi_env.hpp"
 
 #ifdef PERIADAPT_HAVE_MPI
@@ -219,22 +220,13 @@ std::vector<std::uint32_t> owned_rows(const RowPartition& p, const std::vector<s
   return out;
 }
 
-std::size_t share_force_pass(const RowPartition& p, NodeSet& ns, BondFamilies& bf,
-                             const std::vector<std::uint32_t>& rows,
-                             const std::vector<std::uint64_t>& broken_here,
-                             std::vector<std::uint64_t>* log, std::vector<double>* W,
-                             std::vector<double>* stretch) {
-  // Which optional fields travel: agreed by all, so that every rank packs the same layout.
-  const bool with_w = mpi::max(W != nullptr) > 0;
-  const bool with_s = mpi::max(stretch != nullptr) > 0;
-  const bool full = mpi::max(&rows != &p.owned) == 0;
-  std::vector<double> w_scratch, s_scratch;
-  if (with_w && !W) W = &w_scratch;
-  if (with_s && !stretch) stretch = &s_scratch;
-  const std::size_t n = ns.size();
-  if (with_w) W->resize(n, 0.0);
-  if (with_s) stretch->resize(n, -INFINITY);
+namespace {
+
+// Every computed row's force, and W and the breakable stretch when given, to every rank.
+void share_all_rows(const RowPartition& p, NodeSet& ns, const std::vector<std::uint32_t>& rows,
+                    bool full, std::vector<double>* W, std::vector<double>* stretch) {
   const int D = ns.dim;
+  const bool with_w = W != nullptr, with_s = stretch != nullptr;
   const std::size_t per_row = static_cast<std::size_t>(D) + with_w + with_s;
   // Reused from pass to pass: the exchange of every step neither allocates nor clears them.
   static std::vector<double> values, all_values;
@@ -264,6 +256,32 @@ std::size_t share_force_pass(const RowPartition& p, NodeSet& ns, BondFamilies& b
     for (int d = 0; d < D; ++d) f[d][i] = v[d];
     if (with_w) (*W)[i] = v[D];
     if (with_s) (*stretch)[i] = v[D + with_w];
+  }
+}
+
+}  // namespace
+
+std::size_t share_force_pass(const RowPartition& p, NodeSet& ns, BondFamilies& bf,
+                             const std::vector<std::uint32_t>& rows,
+                             const std::vector<std::uint64_t>& broken_here,
+                             std::vector<std::uint64_t>* log, std::vector<double>* W,
+                             std::vector<double>* stretch) {
+  // Which optional fields travel: agreed by all, so that every rank packs the same layout.
+  const bool with_w = mpi::max(W != nullptr) > 0;
+  const bool with_s = mpi::max(stretch != nullptr) > 0;
+  const bool full = mpi::max(&rows != &p.owned) == 0;
+  std::vector<double> w_scratch, s_scratch;
+  if (with_w && !W) W = &w_scratch;
+  if (with_s && !stretch) stretch = &s_scratch;
+  const std::size_t n = ns.size();
+  if (with_w) W->resize(n, 0.0);
+  if (with_s) stretch->resize(n, -INFINITY);
+  if (p.ghost_pass) {
+    // The ranks' regions need their ghosts' forces only; the rest waits for a sync (energy
+    // densities and stretches stay with their rows' owners, whose triggers read them).
+    share_ghost_forces(p, ns);
+  } else {
+    share_all_rows(p, ns, rows, full, with_w ? W : nullptr, with_s ? stretch : nullptr);
   }
   // Each broken bond with its row (rows are not stored in id order once events moved some).
   std::vector<std::uint64_t> sorted_here(broken_here);

@@ -7,10 +7,10 @@
 // row's bond count. When refinement adds nodes, children join their parent's rank; once the
 // largest rank's bonds pass the mean by more than the deck's threshold, Zoltan repartitions
 // starting from the current owners (LB_APPROACH REPARTITION, which keeps moves few). Since every
-// rank holds the whole state, a move hands over ownership only: no bond state travels. Everything
-// but the force pass
-// (integration, refinement events, observers) runs on every rank alike on the same data; rank 0
-// writes the files.
+// rank holds the whole state, a move hands over ownership only: no bond state travels. Refinement
+// events and observers run on every rank alike on the same data; rank 0 writes the files. The
+// explicit solver integrates each rank's region only where it can (parallel/ghost_layer.hpp)
+// and brings the rest up to date before anything reads it.
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -42,6 +42,17 @@ struct RowPartition {
   std::vector<std::uint32_t> around;
   long around_generation = -1;
   bool around_transpose = false;
+  // Owned integration (parallel/ghost_layer.hpp): the explicit solver advances this rank's
+  // region only, and a pass with ghost_pass set shares the exported forces alone.
+  bool ghost_mode = false;
+  bool ghost_pass = false;
+  std::vector<std::uint32_t> region;        // ascending
+  std::vector<char> in_region;              // per node
+  std::vector<std::uint32_t> exports;       // owned nodes in another rank's region
+  std::vector<std::uint32_t> all_exports;   // every rank's, in rank order
+  std::vector<int> export_counts;
+  long region_generation = -1;
+  long region_steps = 0;  // steps that integrated the region alone
 };
 
 // When the partition is active and the nodes or bonds changed since the last call: the first

@@ -10,6 +10,7 @@ class CrackTipObserver : public RunObserver {
  public:
   explicit CrackTipObserver(const RunView& view);
   void on_step(RunView& view, long step, bool closing) override;
+  bool wants_state(const RunView& view, long step) const override { return view.history_due(step, false); }
   std::string progress_note() const override;
   void save(ArchiveWriter& w) override;
   void restore(ArchiveReader& r, RunView& view) override;

@@ -16,6 +16,7 @@ class HistoryObserver : public RunObserver {
   void on_start(RunView& view) override;
   bool wants_energy_density(long step) const override;
   void on_step(RunView& view, long step, bool closing) override;
+  bool wants_state(const RunView& view, long step) const override { return view.history_due(step, false); }
   void save(ArchiveWriter& w) override;
   void restore(ArchiveReader& r, RunView& view) override;
   void finish(RunView& view, RunResult& result) override;

@@ -73,6 +73,9 @@ class RunObserver {
   virtual void on_start(RunView&) {}
   // Whether `step` needs the strain-energy density: the solver then keeps it from its force pass.
   virtual bool wants_energy_density(long /*step*/) const { return false; }
+  // Whether on_step(`step`) reads the nodes' state (distributed runs bring every node up to date
+  // first; parallel/ghost_layer.hpp). Closing calls always get it.
+  virtual bool wants_state(const RunView&, long /*step*/) const { return true; }
   // After step `step` (0: the initial state). `closing`: see RunView::history_due.
   virtual void on_step(RunView&, long /*step*/, bool /*closing*/) {}
   virtual void on_event(RunView&, const RefinementEvent&) {}

@@ -10,6 +10,7 @@ class PictureObserver : public RunObserver {
  public:
   explicit PictureObserver(const RunView& view, double dt);
   void on_step(RunView& view, long step, bool closing) override;
+  bool wants_state(const RunView&, long step) const override { return steps_.count(step) > 0; }
   void save(ArchiveWriter& w) override;
   void restore(ArchiveReader& r, RunView& view) override;
   void finish(RunView& view, RunResult& result) override;

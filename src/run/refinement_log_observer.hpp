@@ -10,6 +10,7 @@ class RefinementLogObserver : public RunObserver {
  public:
   explicit RefinementLogObserver(const RunView& view);
   void on_start(RunView& view) override;
+  bool wants_state(const RunView&, long) const override { return false; }
   void on_event(RunView& view, const RefinementEvent& e) override;
   void save(ArchiveWriter& w) override;
   void restore(ArchiveReader& r, RunView& view) override;

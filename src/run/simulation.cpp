@@ -162,6 +162,7 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
 
   VelocityVerlet vv(m, ts.dt);
   if (dk.multirate) vv.set_multirate(dk.safety, dk.multirate_ratio);
+  if (m.partition.active && dk.owned_integration) vv.enable_owned_integration();
   if (!restart) vv.initialize();
   std::unique_ptr<Adaptor> adaptor;
   if (dk.adapt.enabled) adaptor = std::make_unique<Adaptor>(m, vv, dk.adapt);
@@ -271,10 +272,16 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
     }
     // A signal reaches the ranks at different moments: all stop at the first step any saw it.
     res.interrupted = static_cast<int>(mpi::max(interrupt_signal()));
+    const bool checkpoint = res.interrupted || (dk.output.checkpoint_every > 0 &&
+                                                s % dk.output.checkpoint_every == 0 && s < ts.steps);
+    if (vv.owned_integration()) {
+      // The ranks agree (an observer may act on rank 0 alone).
+      bool wanted = checkpoint || s == ts.steps;
+      for (const auto& o : observers) wanted = wanted || o->wants_state(view, s);
+      if (mpi::max(wanted)) vv.sync_state();
+    }
     observe(s, false);
-    if (opt.write_files && (res.interrupted || (dk.output.checkpoint_every > 0 &&
-                                                s % dk.output.checkpoint_every == 0 && s < ts.steps)))
-      write_run_checkpoint();
+    if (opt.write_files && checkpoint) write_run_checkpoint();
     if (res.interrupted) observe(s, true);
     std::string note;
     for (const auto& o : observers)
@@ -286,6 +293,7 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
     }
   }
   bar.finish();
+  vv.sync_state();  // the outputs and the returned model read every node
 
   tot.wall_s = std::chrono::duration<double>(clock::now() - t_start).count();
   tot.status = res.diverged ? "diverged" : res.interrupted ? "interrupted" : "completed";

@@ -15,6 +15,7 @@ class SnapshotObserver : public RunObserver {
   explicit SnapshotObserver(const RunView& view);
   bool wants_energy_density(long step) const override;
   void on_step(RunView& view, long step, bool closing) override;
+  bool wants_state(const RunView&, long step) const override { return wants_energy_density(step); }
   void save(ArchiveWriter& w) override;
   void restore(ArchiveReader& r, RunView& view) override;
   void finish(RunView& view, RunResult& result) override;

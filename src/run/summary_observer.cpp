@@ -18,7 +18,11 @@ nlohmann::json ranks_json(const RowPartition& p) {
           {"partitions_made", p.partitions},
           {"events_kept_partition", p.extensions},
           {"rebalance_threshold", p.rebalance_threshold},
-          {"bond_imbalance", p.imbalance}};
+          {"bond_imbalance", p.imbalance},
+          {"owned_integration", p.ghost_mode},
+          {"region_nodes_rank0", p.ghost_mode ? nlohmann::json(p.region.size()) : nlohmann::json(nullptr)},
+          {"ghost_exchange_nodes", p.ghost_mode ? nlohmann::json(p.all_exports.size()) : nlohmann::json(nullptr)},
+          {"region_steps", p.region_steps}};
 }
 
 SummaryObserver::SummaryObserver(const RunView& view) : initial_nodes_(view.model.nodes.size()) {}

@@ -15,6 +15,7 @@ nlohmann::json ranks_json(const RowPartition& p);
 class SummaryObserver : public RunObserver {
  public:
   explicit SummaryObserver(const RunView& view);
+  bool wants_state(const RunView&, long) const override { return false; }
   void save(ArchiveWriter& w) override;
   void restore(ArchiveReader& r, RunView& view) override;
   // Keep it last in the observer list: it writes the file the others filled in.

@@ -6,6 +6,7 @@
 #include "material/contact.hpp"
 #include "material/force_model.hpp"
 #include "material/impactor.hpp"
+#include "parallel/ghost_layer.hpp"
 #include "parallel/mpi_env.hpp"
 #include "parallel/row_partition.hpp"
 #include "solver/ghost_correction.hpp"
@@ -28,6 +29,21 @@ std::size_t distributed_forces(Model& m, bool allow_breaking, const std::vector<
   // The dual pairing's forces gather memberships from other rows: a full pass only.
   if (dual) rows = nullptr;
   refresh_partition(m.partition, m.nodes, m.bonds);
+  if (m.partition.ghost_mode && m.partition.region_generation != m.partition.generation) {
+    // The rows whose neighbours' positions the pass reads besides its own rows' neighbours.
+    std::vector<std::uint32_t> around = m.partition.owned;
+    auto add = [&](bool transpose) {
+      const std::vector<std::uint32_t>& r = rows_around(m.partition, m.bonds, transpose);
+      around.insert(around.end(), r.begin(), r.end());
+    };
+    if (dual) add(true);
+    if (m.formulation.state_based()) add(false);
+    // Loaded and driven nodes: every rank sums their work and reactions.
+    std::vector<std::uint32_t> always;
+    for (const BodyLoad& l : m.loads) always.insert(always.end(), l.nodes.begin(), l.nodes.end());
+    for (const PrescribedMotion& pm : m.motions) always.insert(always.end(), pm.nodes.begin(), pm.nodes.end());
+    refresh_ghost_layer(m.partition, m.bonds, around, always);
+  }
   const std::vector<std::uint32_t> mine = owned_rows(m.partition, rows);
   // Energy densities when any rank asks (rank 0's observers ask where the others write nothing):
   // every owner must compute its rows' share.

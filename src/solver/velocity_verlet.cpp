@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <type_traits>
 
+#include "parallel/ghost_layer.hpp"
+#include "parallel/mpi_env.hpp"
 #include "solver/internal_forces.hpp"
 
 namespace periadapt {
@@ -28,11 +30,12 @@ struct StepArrays {
 
 namespace {
 
-// Opening half-kick (kick[rate] or half_dt) and drift of every node; returns the number of
+// Opening half-kick (kick[rate] or half_dt) and drift of the listed nodes (all without a list);
+// returns the number of
 // displacement components beyond `lim` or non-finite.
 template <int D, bool Keep, bool Multi>
-std::size_t kick_drift(const StepArrays& s, std::size_t n, const double* kick, double half_dt,
-                       double dt, double lim) {
+std::size_t kick_drift(const StepArrays& s, const std::uint32_t* rows, std::size_t n,
+                       const double* kick, double half_dt, double dt, double lim) {
   const double* x[D];
   double *u[D], *v[D], *ku[D], *kv[D], *ka[D];
   const double* a[D];
@@ -44,7 +47,8 @@ std::size_t kick_drift(const StepArrays& s, std::size_t n, const double* kick, d
   const std::uint8_t* rate = s.rate;
   std::size_t bad = 0;
 #pragma omp parallel for simd schedule(static) reduction(+ : bad)
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t r = 0; r < n; ++r) {
+    const std::size_t i = rows ? rows[r] : r;
     const double c = Multi ? kick[rate[i]] : half_dt;
     for (int d = 0; d < D; ++d) {
       if constexpr (Keep) {
@@ -86,16 +90,18 @@ void accelerate(const StepArrays& s, const std::uint32_t* rows, std::size_t n, c
   }
 }
 
-// v += kick a over every node: the closing half-kick of constrained models, given after their
+// v += kick a over the listed nodes (all without a list): the closing half-kick of constrained models, given after their
 // constrained components' accelerations were zeroed.
 template <int D, bool Multi>
-void kick_all(const StepArrays& s, std::size_t n, const double* kick, double half_dt) {
+void kick_all(const StepArrays& s, const std::uint32_t* rows, std::size_t n, const double* kick,
+              double half_dt) {
   double* v[D];
   const double* a[D];
   for (int d = 0; d < D; ++d) v[d] = s.v[d], a[d] = s.a[d];
   const std::uint8_t* rate = s.rate;
 #pragma omp parallel for simd schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t r = 0; r < n; ++r) {
+    const std::size_t i = rows ? rows[r] : r;
     const double c = Multi ? kick[rate[i]] : half_dt;
     for (int d = 0; d < D; ++d) v[d][i] += c * a[d][i];
   }
@@ -190,9 +196,9 @@ void VelocityVerlet::impose_motions(double t, bool velocities_only) {
   }
 }
 
-void VelocityVerlet::request_energy_at(long step) {
-  if (std::find(energy_requests_.begin(), energy_requests_.end(), step) == energy_requests_.end())
-    energy_requests_.push_back(step);
+void VelocityVerlet::request_energy_at(long step, bool every_row) {
+  std::vector<long>& list = every_row || !m_.partition.ghost_mode ? energy_requests_ : owned_energy_requests_;
+  if (std::find(list.begin(), list.end(), step) == list.end()) list.push_back(step);
 }
 
 void VelocityVerlet::set_multirate(double safety, int max_ratio) {
@@ -279,6 +285,7 @@ void VelocityVerlet::rebuild_rate_rows() {
 }
 
 void VelocityVerlet::synchronize_velocities() {
+  sync_state();
   if (!multirate_ || syncing_) return;
   syncing_ = true;
   synced_.clear();
@@ -340,8 +347,11 @@ void VelocityVerlet::compute_accelerations(const std::vector<std::uint32_t>* row
                                            bool closing_kick) {
   NodeSet& ns = m_.nodes;
   std::erase_if(energy_requests_, [&](long s) { return s < step_; });
+  std::erase_if(owned_energy_requests_, [&](long s) { return s < step_; });
   const bool want_energy =
-      std::find(energy_requests_.begin(), energy_requests_.end(), step_) != energy_requests_.end();
+      std::find(energy_requests_.begin(), energy_requests_.end(), step_) != energy_requests_.end() ||
+      std::find(owned_energy_requests_.begin(), owned_energy_requests_.end(), step_) !=
+          owned_energy_requests_.end();
   // Only the rows' accelerations change in a partial pass (after an undo, the others hold the
   // restored state's, which their forces were not recomputed for); so do only their reactions
   // (below). Its energy field is complete only if the other rows' densities belong to this very
@@ -355,6 +365,7 @@ void VelocityVerlet::compute_accelerations(const std::vector<std::uint32_t>* row
     material_energy_density(ns, m_.bonds, material_context(m_), energy_, &idle_rows_);
   }
   energy_step_ = want_energy && (!partial || energy_kept) ? step_ : -1;
+  energy_owned_only_ = ghost_step_;
   // Multi-rate: a pass also writes its rows' densities (the same sweep), so that each row holds
   // the one of its own latest pass (energy_density_recent()) at the next check step: refreshes
   // always, step passes (those with the closing kick) in the last max_ratio steps before it.
@@ -362,6 +373,7 @@ void VelocityVerlet::compute_accelerations(const std::vector<std::uint32_t>* row
   const bool keep_recent =
       multirate_ && every > 0 && (!closing_kick || (every - step_ % every) % every < max_ratio_);
   std::vector<std::uint64_t>* log = undo_enabled_ ? &saved_.broken_log : nullptr;
+  m_.partition.ghost_pass = ghost_step_;
   if (partial) {
     broken_total_ += internal_forces_rows(m_, m_.damage_enabled, *rows, log,
                                           energy_kept || keep_recent ? &energy_ : nullptr);
@@ -374,14 +386,27 @@ void VelocityVerlet::compute_accelerations(const std::vector<std::uint32_t>* row
                                      want_energy || keep_recent ? &energy_ : nullptr);
     bond_evals_ += static_cast<double>(m_.bonds.num_bonds());
   }
-  const std::size_t n = partial ? rows->size() : ns.size();
+  m_.partition.ghost_pass = false;
+  // Owned integration: only the region's nodes have their forces here.
+  const std::vector<std::uint32_t>* accel_rows = partial ? rows : nullptr;
+  if (ghost_step_) {
+    if (partial) {
+      region_rows_.clear();
+      for (std::uint32_t i : *rows)
+        if (m_.partition.in_region[i]) region_rows_.push_back(i);
+      accel_rows = &region_rows_;
+    } else {
+      accel_rows = &m_.partition.region;
+    }
+  }
+  const std::size_t n = accel_rows ? accel_rows->size() : ns.size();
   const int dim = ns.dim;
   const bool loaded = !body_[0].empty();
   // The step's closing half-kick rides along when no constrained component needs its
   // acceleration zeroed first (the kick of a row left out of a partial pass is zero).
   const bool kick_here = closing_kick && fixed_dofs_.empty();
   const StepArrays sa = arrays();
-  const std::uint32_t* row_ids = partial ? rows->data() : nullptr;
+  const std::uint32_t* row_ids = accel_rows ? accel_rows->data() : nullptr;
   with_dim(dim, [&](auto D) {
     with_bool(loaded, [&](auto L) {
       with_bool(kick_here, [&](auto K) {
@@ -412,7 +437,9 @@ void VelocityVerlet::compute_accelerations(const std::vector<std::uint32_t>* row
   if (closing_kick && !kick_here)
     with_dim(dim, [&](auto D) {
       with_bool(sa.rate != nullptr, [&](auto M) {
-        kick_all<D(), M()>(sa, ns.size(), close_kick_.data(), 0.5 * dt_);
+        const std::vector<std::uint32_t>* region = ghost_step_ ? &m_.partition.region : nullptr;
+        kick_all<D(), M()>(sa, region ? region->data() : nullptr, region ? region->size() : ns.size(),
+                           close_kick_.data(), 0.5 * dt_);
       });
     });
 }
@@ -470,6 +497,8 @@ void VelocityVerlet::initialize() {
 }
 
 void VelocityVerlet::refresh(const std::vector<std::uint32_t>* rows) {
+  sync_state();
+  ghost_step_ = false;
   m_.nodes.sync_all_current();
   apply_loads(time_);
   compute_accelerations(rows);
@@ -526,11 +555,56 @@ std::vector<std::uint32_t> VelocityVerlet::rows_damaged_by_last_step() const {
   return out;
 }
 
+bool VelocityVerlet::enable_owned_integration() {
+  RowPartition& p = m_.partition;
+  p.ghost_mode = p.active && !m_.contact.enabled && m_.impactors.empty() && !m_.pdro.enabled &&
+                 !m_.ghost.enabled;
+  return p.ghost_mode;
+}
+
+void VelocityVerlet::sync_state() {
+  if (!stale_) return;
+  NodeSet& ns = m_.nodes;
+  // Per-row values each owner keeps for its rows: the stretch trigger's, and multi-rate's
+  // latest energy densities (a repartition after an event hands rows to new owners).
+  std::vector<std::vector<double>*> per_row;
+  if (m_.track_breakable_stretch && m_.breakable_stretch.size() == ns.size())
+    per_row.push_back(&m_.breakable_stretch);
+  if (multirate_ && energy_check_every_ > 0 && energy_.size() == ns.size()) per_row.push_back(&energy_);
+  const long fields = static_cast<long>(per_row.size());
+  if (mpi::max(fields) != -mpi::max(-fields))
+    throw std::logic_error("owned integration: the ranks keep different per-row fields");
+  gather_owned_state(m_.partition, ns, per_row);
+  stale_ = false;
+}
+
+bool VelocityVerlet::region_step_allowed() {
+  const RowPartition& p = m_.partition;
+  // The region comes with the partition, made by a force pass (after a restart: the first step's).
+  // (The same answer on every rank: they hold the same partition.)
+  if (!p.ghost_mode || p.region_generation != p.generation || p.nodes != m_.nodes.size() ||
+      p.bonds != m_.bonds.neighbor.size())
+    return false;
+  // A pass that computes energy densities shares them for every row (the observers and the
+  // energy trigger read them all): such steps run whole, after a sync. Only rank 0's observers
+  // may ask, so the ranks agree first.
+  const long next = step_ + 1;
+  const bool want_energy =
+      std::find(energy_requests_.begin(), energy_requests_.end(), next) != energy_requests_.end();
+  const long every = energy_check_every_;
+  const bool keep_recent = multirate_ && every > 0 && (every - next % every) % every < max_ratio_;
+  return mpi::max(want_energy || (keep_recent && !owned_energy_checks_)) == 0;
+}
+
 bool VelocityVerlet::step() {
   NodeSet& ns = m_.nodes;
   const std::size_t n = ns.size();
   const int dim = ns.dim;
   const double dt = dt_, hdt = 0.5 * dt_;
+  ghost_step_ = region_step_allowed();
+  if (!ghost_step_) sync_state();
+  m_.partition.region_steps += ghost_step_;
+  const std::vector<std::uint32_t>* region = ghost_step_ ? &m_.partition.region : nullptr;
   // Kicks and drift go in one pass over the nodes (one thread fork per step, not 2 dim), which
   // also keeps the state an undo needs on the way; components with a prescribed velocity are
   // put on it afterwards.
@@ -581,7 +655,8 @@ bool VelocityVerlet::step() {
   std::size_t nbad = with_dim(dim, [&](auto D) {
     return with_bool(undo_enabled_, [&](auto K) {
       return with_bool(sa.rate != nullptr, [&](auto M) {
-        return kick_drift<D(), K(), M()>(sa, n, open_kick_.data(), hdt, dt, lim);
+        return kick_drift<D(), K(), M()>(sa, region ? region->data() : nullptr,
+                                         region ? region->size() : n, open_kick_.data(), hdt, dt, lim);
       });
     });
   });
@@ -600,9 +675,18 @@ bool VelocityVerlet::step() {
             }
   }
   // Rare: find the first offending node for the diagnosis.
-  for (std::size_t i = 0; nbad > 0 && i < n && bad == n; ++i)
-    for (int d = 0; d < dim; ++d)
-      if (!(std::abs(ns.u[d][i]) <= lim)) bad = i;
+  if (region) {
+    stale_ = true;
+    for (std::size_t r = 0; nbad > 0 && r < region->size() && bad == n; ++r)
+      for (int d = 0; d < dim; ++d)
+        if (!(std::abs(ns.u[d][(*region)[r]]) <= lim)) bad = (*region)[r];
+    // Every node is in its owner's region: the lowest offending node over the ranks.
+    bad = static_cast<std::size_t>(-mpi::max(-static_cast<long>(bad)));
+  } else {
+    for (std::size_t i = 0; nbad > 0 && i < n && bad == n; ++i)
+      for (int d = 0; d < dim; ++d)
+        if (!(std::abs(ns.u[d][i]) <= lim)) bad = i;
+  }
   time_ += dt;
   ++step_;
   impose_motions(time_, false);
@@ -611,6 +695,7 @@ bool VelocityVerlet::step() {
       for (std::uint32_t i : pm.nodes)
         ns.sync_current(i);
   if (bad < n) {
+    sync_state();
     divergence_ = {bad, step_, time_,
                    std::isfinite(ns.u[0][bad]) ? "displacement exceeds 100x the body size"
                                                : "non-finite displacement"};

@@ -50,6 +50,15 @@ class VelocityVerlet {
   // Undo support (refinement triggered by damage redoes the step on the refined grid). When on,
   // every step keeps what undo_last_step() needs: the previous kinematic state and the bonds the
   // step broke.
+  // Distributed runs: each rank integrates only the nodes its force passes read
+  // (parallel/ghost_layer.hpp), where the model allows it (no contact, impactors, damage overlay
+  // or ghost-force table, which read nodes beyond them). Returns whether it does. Collective
+  // from then on: sync_state(), called by everything that reads the whole model, brings every
+  // node up to date, and each step decides together whether it may leave nodes stale.
+  bool enable_owned_integration();
+  void sync_state();
+  bool owned_integration() const { return m_.partition.ghost_mode; }
+
   void set_undo(bool on) { undo_enabled_ = on; }
   void undo_last_step();
   // With undo on: the nodes whose damage the last step raised (bonds of their rows broke).
@@ -61,7 +70,7 @@ class VelocityVerlet {
   // Asks the force passes that reach step `step` (the step itself, a redo of it, a refresh at
   // it) to write every node's strain-energy density on the way: the bond loop then serves both,
   // instead of a second pass over the bonds (history samples, the energy trigger).
-  void request_energy_at(long step);
+  void request_energy_at(long step, bool every_row = true);
   // Multi-rate stepping (subcycling): every node whose own stable step (Silling-Askari bound of
   // its row) allows k dt with the deck's safety factor, k <= max_ratio, advances as one
   // Velocity-Verlet step of k dt spread over k steps (opening kick, k drifts, closing kick); the
@@ -96,11 +105,23 @@ class VelocityVerlet {
   void keep_energies_for_checks(long every) { energy_check_every_ = every; }
   // The energy densities of the current state when a force pass computed them, else nullptr.
   const std::vector<double>* energy_density_now() const {
+    return energy_step_ == step_ && !energy_owned_only_ && energy_.size() == m_.nodes.size()
+               ? &energy_
+               : nullptr;
+  }
+  // Owned integration: a trigger that reads only this rank's rows (adapt/adaptor.cpp) asks for
+  // their densities with every_row = false, and the step may leave the other rows' unshared.
+  // energy_density_of_owned_rows() then gives what energy_density_recent() gives, valid for this
+  // rank's rows.
+  void set_owned_energy_checks(bool on) { owned_energy_checks_ = on; }
+  const std::vector<double>* energy_density_of_owned_rows() const {
+    if (multirate_ && energy_check_every_ > 0 && energy_.size() == m_.nodes.size()) return &energy_;
     return energy_step_ == step_ && energy_.size() == m_.nodes.size() ? &energy_ : nullptr;
   }
 
  private:
   void apply_loads(double t);
+  bool region_step_allowed();
   // closing_kick: also the step's closing half-kick (from close_kick_).
   void compute_accelerations(const std::vector<std::uint32_t>* rows = nullptr,
                              bool subcycle = false, bool closing_kick = false);
@@ -128,6 +149,9 @@ class VelocityVerlet {
   double runaway_limit_ = 0.0;
   DivergenceError divergence_{};
   bool undo_enabled_ = false;
+  bool stale_ = false;       // owned integration: nodes outside this rank's region lag
+  bool ghost_step_ = false;  // this step integrates the region only
+  std::vector<std::uint32_t> region_rows_;  // step scratch: a partial pass's rows in the region
   bool multirate_ = false;
   double multirate_safety_ = 0.8;
   int max_ratio_ = 2;
@@ -148,6 +172,9 @@ class VelocityVerlet {
   bool syncing_ = false;
   std::array<double, kMaxRateRatio + 1> open_kick_{}, close_kick_{};
   std::vector<long> energy_requests_;  // steps whose force passes also compute energies
+  std::vector<long> owned_energy_requests_;  // ... for this rank's rows only
+  bool energy_owned_only_ = false;           // energy_ holds this rank's rows only
+  bool owned_energy_checks_ = false;
   std::vector<double> energy_;
   long energy_step_ = -1;               // the step energy_ belongs to (-1: none)
   struct Saved {

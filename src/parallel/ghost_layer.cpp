@@ -1,0 +1,105 @@
+#include "parallel/ghost_layer.hpp"
+
+#include "parallel/mpi_env.hpp"
+
+namespace periadapt {
+
+namespace {
+
+// Where this rank's own segment starts in a rank-ordered gather with `counts` entries per rank.
+std::size_t own_offset(const std::vector<int>& counts) {
+  std::size_t at = 0;
+  for (int r = 0; r < mpi::rank(); ++r) at += static_cast<std::size_t>(counts[static_cast<std::size_t>(r)]);
+  return at;
+}
+
+}  // namespace
+
+void refresh_ghost_layer(RowPartition& p, const BondFamilies& bf,
+                         const std::vector<std::uint32_t>& around,
+                         const std::vector<std::uint32_t>& always) {
+  if (p.region_generation == p.generation) return;
+  const std::size_t n = p.mine.size();
+  std::vector<char> in(p.mine.begin(), p.mine.end());
+  for (std::uint32_t i : around) {
+    in[i] = 1;
+    for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) in[bf.neighbor[k]] = 1;
+  }
+  for (std::uint32_t i : always)
+    if (i < n) in[i] = 1;
+  p.region.clear();
+  std::vector<std::uint32_t> ghosts;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!in[i]) continue;
+    p.region.push_back(static_cast<std::uint32_t>(i));
+    if (!p.mine[i]) ghosts.push_back(static_cast<std::uint32_t>(i));
+  }
+  // Every rank's ghosts: this rank exports those of its nodes that another rank integrates.
+  std::vector<int> counts;
+  const std::vector<std::uint32_t> all_ghosts = mpi::all_gather(ghosts, &counts);
+  std::vector<char> wanted(n, 0);
+  const std::size_t own_begin = own_offset(counts), own_end = own_begin + ghosts.size();
+  for (std::size_t q = 0; q < all_ghosts.size(); ++q)
+    if (q < own_begin || q >= own_end) wanted[all_ghosts[q]] = 1;
+  p.exports.clear();
+  for (std::uint32_t i : p.owned)
+    if (wanted[i]) p.exports.push_back(i);
+  p.all_exports = mpi::all_gather(p.exports, &p.export_counts);
+  p.in_region = std::move(in);
+  p.region_generation = p.generation;
+}
+
+void share_ghost_forces(const RowPartition& p, NodeSet& ns) {
+  const int D = ns.dim;
+  double* f[3] = {ns.f[0].data(), ns.f[1].data(), ns.f[2].data()};
+  // Reused from step to step: the exchange neither allocates nor clears them.
+  static std::vector<double> values, all_values;
+  values.resize(p.exports.size() * static_cast<std::size_t>(D));
+  for (std::size_t k = 0; k < p.exports.size(); ++k)
+    for (int d = 0; d < D; ++d) values[k * D + d] = f[d][p.exports[k]];
+  mpi::all_gather_into(values, all_values);
+  const std::size_t own_begin = own_offset(p.export_counts), own_end = own_begin + p.exports.size();
+  for (std::size_t k = 0; k < p.all_exports.size(); ++k) {
+    if (k == own_begin) k = own_end;
+    if (k >= p.all_exports.size()) break;
+    const std::uint32_t i = p.all_exports[k];
+    for (int d = 0; d < D; ++d) f[d][i] = all_values[k * D + d];
+  }
+}
+
+void gather_owned_state(const RowPartition& p, NodeSet& ns,
+                        const std::vector<std::vector<double>*>& per_row) {
+  const int D = ns.dim;
+  const std::size_t width = 4 * static_cast<std::size_t>(D) + per_row.size();
+  std::vector<double> values(p.owned.size() * width), all_values;
+  for (std::size_t k = 0; k < p.owned.size(); ++k) {
+    const std::uint32_t i = p.owned[k];
+    double* v = &values[k * width];
+    for (int d = 0; d < D; ++d) {
+      v[d] = ns.u[d][i];
+      v[D + d] = ns.v[d][i];
+      v[2 * D + d] = ns.a[d][i];
+      v[3 * D + d] = ns.f[d][i];
+    }
+    for (std::size_t q = 0; q < per_row.size(); ++q) v[4 * D + q] = (*per_row[q])[i];
+  }
+  std::vector<int> counts;
+  mpi::all_gather_into(values, all_values, &counts);
+  const std::size_t own_begin = own_offset(counts) / width, own_end = own_begin + p.owned.size();
+  for (std::size_t k = 0; k < p.all_owned.size(); ++k) {
+    if (k == own_begin) k = own_end;
+    if (k >= p.all_owned.size()) break;
+    const std::uint32_t i = p.all_owned[k];
+    const double* v = &all_values[k * width];
+    for (int d = 0; d < D; ++d) {
+      ns.u[d][i] = v[d];
+      ns.v[d][i] = v[D + d];
+      ns.a[d][i] = v[2 * D + d];
+      ns.f[d][i] = v[3 * D + d];
+    }
+    for (std::size_t q = 0; q < per_row.size(); ++q) (*per_row[q])[i] = v[4 * D + q];
+    ns.sync_current(i);
+  }
+}
+
+}  // namespace periadapt

@@ -1,0 +1,35 @@
+#pragma once
+// Owned integration in distributed explicit runs. Each rank advances only the nodes its force
+// pass reads (its region: its rows, the rows whose dilatations or dual memberships it evaluates,
+// their neighbours, and every loaded or driven node, whose work and reactions every rank sums),
+// and after each pass receives from their owners the forces of the region's nodes it does not
+// own. The nodes outside its region go stale; a sync gathers every node's state from its owner
+// whenever something reads the whole model (outputs, triggers, events, checkpoints), so that
+// every rank then holds what the serial run holds, bit for bit.
+#include <cstdint>
+#include <vector>
+
+#include "core/bond_families.hpp"
+#include "core/node_set.hpp"
+#include "parallel/row_partition.hpp"
+
+namespace periadapt {
+
+// Rebuilds p.region, p.in_region, p.exports and p.all_exports for the current owners when they
+// changed (collective). `always`: nodes in every rank's region (loaded and driven nodes);
+// `around`: the rows whose positions' neighbours the pass also reads (LPS dilatations, dual
+// memberships), or p.owned.
+void refresh_ghost_layer(RowPartition& p, const BondFamilies& bf,
+                         const std::vector<std::uint32_t>& around,
+                         const std::vector<std::uint32_t>& always);
+
+// After a pass: every rank's exported forces (its owned nodes in another rank's region) to all
+// (collective).
+void share_ghost_forces(const RowPartition& p, NodeSet& ns);
+
+// Every rank's owned u, v, a, f (and `per_row`: per-node fields each owner holds for its rows;
+// the same list on every rank) to all, and the current positions from them (collective).
+void gather_owned_state(const RowPartition& p, NodeSet& ns,
+                        const std::vector<std::vector<double>*>& per_row);
+
+}  // namespace periadapt
