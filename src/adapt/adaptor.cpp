@@ -244,11 +244,18 @@ bool Adaptor::step() {
   } else if (!vv_.step()) {
     return false;
   }
-  // The stretch trigger reads every row.
-  if (spec_.stretch_fraction && check_step) vv_.sync_state();
   if (spec_.stretch_fraction && check_step) {
     const std::vector<char>& refinable = this->refinable();
-    const auto ids = stretch_trigger(m_, spec_, *spec_.stretch_fraction, refinable);
+    // Owned integration: each rank examines its own rows (their stretches are its own, their
+    // neighbours in its region), and the ranks gather the nodes found, in the serial order.
+    std::vector<std::uint32_t> ids;
+    if (vv_.owned_integration()) {
+      ids = mpi::all_gather(stretch_trigger(m_, spec_, *spec_.stretch_fraction, refinable,
+                                            &m_.partition.owned));
+      std::sort(ids.begin(), ids.end());
+    } else {
+      ids = stretch_trigger(m_, spec_, *spec_.stretch_fraction, refinable);
+    }
     refine(parents_for(ids, &refinable), ids.size(), "stretch");
   }
   if (check && owned_check) {

@@ -67,14 +67,17 @@ std::vector<std::uint32_t> energy_trigger(const Model& m, const std::vector<doub
 }
 
 std::vector<std::uint32_t> stretch_trigger(const Model& m, const AdaptSpec& spec, double beta,
-                                           const std::vector<char>& refinable) {
+                                           const std::vector<char>& refinable,
+                                           const std::vector<std::uint32_t>* rows) {
   const NodeSet& ns = m.nodes;
   const std::size_t n = ns.size();
   std::vector<char> hot(n, 0);
   // The force passes measured it already (row-local PMB): their latest value per row.
   const bool tracked = m.track_breakable_stretch && m.breakable_stretch.size() == n;
+  const std::size_t count = rows ? rows->size() : n;
 #pragma omp parallel for schedule(guided, 64)
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t r = 0; r < count; ++r) {
+    const std::size_t i = rows ? (*rows)[r] : r;
     if (!refinable[i]) continue;
     // s0 ~ delta^(-1/2) for every law and scaling (thesis Eqs. 2.15, 2.21): the critical stretch
     // of this node's children.

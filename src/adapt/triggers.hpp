@@ -30,8 +30,10 @@ std::vector<std::uint32_t> energy_trigger(const Model& m, const std::vector<doub
 // no-fail strips when they were kept coarse). Measured against the bond law's own failure point, it fires where bonds are
 // on their way to breaking, not where the load happens to be largest (as W >= alpha W_max does
 // while a load ramps up), and it refines ahead of a crack before any bond breaks coarse.
+// With `rows`, only those are examined (a distributed run's owned rows).
 std::vector<std::uint32_t> stretch_trigger(const Model& m, const AdaptSpec& spec, double beta,
-                                           const std::vector<char>& refinable);
+                                           const std::vector<char>& refinable,
+                                           const std::vector<std::uint32_t>* rows = nullptr);
 
 // Damage trigger: of the nodes whose damage grew (`damaged`), those refinable or already refined.
 std::vector<std::uint32_t> damage_trigger(const Model& m, const std::vector<std::uint32_t>& damaged,
