@@ -6,7 +6,8 @@
 # timings, paths and the rank report. Then a
 # checkpoint written on 2 ranks (every 100 steps) restarts on 3 and ends as the serial run does;
 # where the ranks integrate their own regions (parallel/ghost_layer.hpp), they did so on some steps;
-# an output failure on rank 0 stops every rank with exit code 4.
+# an output failure on rank 0 stops every rank with exit code 4, and a diverging run stops every
+# rank with the serial run's diagnosis.
 # Skipped (exit 0 with a note) in a build without MPI.
 set -u
 bin="$1"; shift
@@ -143,4 +144,18 @@ timeout 120 mpirun -np 2 "$bin" run "$first_deck" --out /proc/periadapt-no-folde
   --threads 1 --set solver.end_time=1e-6 > "$tmp/outfail.log" 2>&1; rc=$?
 if [[ $rc -eq 4 ]]; then echo "ok   an output failure on rank 0 stops all ranks (exit 4)"
 else echo "FAIL output failure under mpirun: exit $rc: $(head -3 "$tmp/outfail.log")"; fail=1; fi
+# A diverging run stops every rank at the step and node the serial run reports (exit 3): the
+# lowest offending node over the ranks' regions.
+unstable=(--quiet --threads 1 --set solver.time_step=4e-7 --set solver.allow_unstable_time_step=true
+          --set solver.end_time=1e-4)
+"$bin" run "$first_deck" --out "$tmp/dv-1" "${unstable[@]}" > /dev/null 2>&1; rc1=$?
+timeout 120 mpirun -np 3 "$bin" run "$first_deck" --out "$tmp/dv-3" "${unstable[@]}" > /dev/null 2>&1; rc3=$?
+if r=$(python3 - "$tmp/dv-1" "$tmp/dv-3" <<'PY'
+import json, os, sys
+a, b = (json.load(open(os.path.join(d, "summary.json"))).get("divergence") for d in sys.argv[1:3])
+if a is None or a != b: sys.exit(f"serial {a}, 3 ranks {b}")
+print(f"node {a['node']} at step {a['step']}")
+PY
+) && [[ $rc1 -eq 3 && $rc3 -eq 3 ]]; then echo "ok   divergence on 3 ranks as on 1: $r, exit 3"
+else echo "FAIL divergence under mpirun: exit $rc1 / $rc3: $r"; fail=1; fi
 exit $fail
