@@ -34,17 +34,32 @@ void refresh_ghost_layer(RowPartition& p, const BondFamilies& bf,
     p.region.push_back(static_cast<std::uint32_t>(i));
     if (!p.mine[i]) ghosts.push_back(static_cast<std::uint32_t>(i));
   }
-  // Every rank's ghosts: this rank exports those of its nodes that another rank integrates.
+  // Every rank's ghosts: what this rank sends each peer is its own nodes among that peer's
+  // ghosts; what it receives, its ghosts grouped by owner.
   std::vector<int> counts;
   const std::vector<std::uint32_t> all_ghosts = mpi::all_gather(ghosts, &counts);
-  std::vector<char> wanted(n, 0);
-  const std::size_t own_begin = own_offset(counts), own_end = own_begin + ghosts.size();
-  for (std::size_t q = 0; q < all_ghosts.size(); ++q)
-    if (q < own_begin || q >= own_end) wanted[all_ghosts[q]] = 1;
-  p.exports.clear();
-  for (std::uint32_t i : p.owned)
-    if (wanted[i]) p.exports.push_back(i);
-  p.all_exports = mpi::all_gather(p.exports, &p.export_counts);
+  const int P = mpi::size(), me = mpi::rank();
+  std::vector<std::vector<std::uint32_t>> send(static_cast<std::size_t>(P)), recv(static_cast<std::size_t>(P));
+  std::size_t at = 0;
+  for (int r = 0; r < P; ++r) {
+    const std::size_t end = at + static_cast<std::size_t>(counts[static_cast<std::size_t>(r)]);
+    if (r != me)
+      for (std::size_t q = at; q < end; ++q)
+        if (p.mine[all_ghosts[q]]) send[static_cast<std::size_t>(r)].push_back(all_ghosts[q]);
+    at = end;
+  }
+  for (std::uint32_t g : ghosts) recv[static_cast<std::size_t>(p.owner[g])].push_back(g);
+  p.peers.clear();
+  p.send_ids.clear();
+  p.recv_ids.clear();
+  for (int r = 0; r < P; ++r) {
+    const auto k = static_cast<std::size_t>(r);
+    if (send[k].empty() && recv[k].empty()) continue;
+    p.peers.push_back(r);
+    p.send_ids.push_back(std::move(send[k]));
+    p.recv_ids.push_back(std::move(recv[k]));
+  }
+  p.ghosts = ghosts.size();
   p.in_region = std::move(in);
   p.region_generation = p.generation;
 }
@@ -53,18 +68,19 @@ void share_ghost_forces(const RowPartition& p, NodeSet& ns) {
   const int D = ns.dim;
   double* f[3] = {ns.f[0].data(), ns.f[1].data(), ns.f[2].data()};
   // Reused from step to step: the exchange neither allocates nor clears them.
-  static std::vector<double> values, all_values;
-  values.resize(p.exports.size() * static_cast<std::size_t>(D));
-  for (std::size_t k = 0; k < p.exports.size(); ++k)
-    for (int d = 0; d < D; ++d) values[k * D + d] = f[d][p.exports[k]];
-  mpi::all_gather_into(values, all_values);
-  const std::size_t own_begin = own_offset(p.export_counts), own_end = own_begin + p.exports.size();
-  for (std::size_t k = 0; k < p.all_exports.size(); ++k) {
-    if (k == own_begin) k = own_end;
-    if (k >= p.all_exports.size()) break;
-    const std::uint32_t i = p.all_exports[k];
-    for (int d = 0; d < D; ++d) f[d][i] = all_values[k * D + d];
+  static std::vector<std::vector<double>> send, recv;
+  send.resize(p.peers.size());
+  recv.resize(p.peers.size());
+  for (std::size_t k = 0; k < p.peers.size(); ++k) {
+    send[k].resize(p.send_ids[k].size() * static_cast<std::size_t>(D));
+    recv[k].resize(p.recv_ids[k].size() * static_cast<std::size_t>(D));
+    for (std::size_t q = 0; q < p.send_ids[k].size(); ++q)
+      for (int d = 0; d < D; ++d) send[k][q * D + d] = f[d][p.send_ids[k][q]];
   }
+  mpi::exchange_with(p.peers, send, recv);
+  for (std::size_t k = 0; k < p.peers.size(); ++k)
+    for (std::size_t q = 0; q < p.recv_ids[k].size(); ++q)
+      for (int d = 0; d < D; ++d) f[d][p.recv_ids[k][q]] = recv[k][q * D + d];
 }
 
 void gather_owned_state(const RowPartition& p, NodeSet& ns,

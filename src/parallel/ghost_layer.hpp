@@ -15,16 +15,16 @@
 
 namespace periadapt {
 
-// Rebuilds p.region, p.in_region, p.exports and p.all_exports for the current owners when they
-// changed (collective). `always`: nodes in every rank's region (loaded and driven nodes);
+// Rebuilds p.region, p.in_region and the peers' send and receive lists for the current owners
+// when they changed (collective). `always`: nodes in every rank's region (loaded and driven nodes);
 // `around`: the rows whose positions' neighbours the pass also reads (LPS dilatations, dual
 // memberships), or p.owned.
 void refresh_ghost_layer(RowPartition& p, const BondFamilies& bf,
                          const std::vector<std::uint32_t>& around,
                          const std::vector<std::uint32_t>& always);
 
-// After a pass: every rank's exported forces (its owned nodes in another rank's region) to all
-// (collective).
+// After a pass: each rank sends its peers the forces of its nodes in their regions, and receives
+// its ghosts' forces from their owners (point to point; every rank calls it).
 void share_ghost_forces(const RowPartition& p, NodeSet& ns);
 
 // Every rank's owned u, v, a, f (and `per_row`: per-node fields each owner holds for its rows;

@@ -97,6 +97,25 @@ double max_real(double v) {
   return v;
 }
 
+void exchange_with(const std::vector<int>& peers, const std::vector<std::vector<double>>& send,
+                   std::vector<std::vector<double>>& recv) {
+#ifdef PERIADAPT_HAVE_MPI
+  if (!g_active || peers.empty()) return;
+  std::vector<MPI_Request> req(2 * peers.size());
+  for (std::size_t k = 0; k < peers.size(); ++k)
+    MPI_Irecv(recv[k].data(), static_cast<int>(recv[k].size()), MPI_DOUBLE, peers[k], 17,
+              MPI_COMM_WORLD, &req[k]);
+  for (std::size_t k = 0; k < peers.size(); ++k)
+    MPI_Isend(send[k].data(), static_cast<int>(send[k].size()), MPI_DOUBLE, peers[k], 17,
+              MPI_COMM_WORLD, &req[peers.size() + k]);
+  MPI_Waitall(static_cast<int>(req.size()), req.data(), MPI_STATUSES_IGNORE);
+#else
+  (void)peers;
+  (void)send;
+  (void)recv;
+#endif
+}
+
 template <class T>
 void all_gather_into(const std::vector<T>& mine, std::vector<T>& out, std::vector<int>* counts) {
 #ifdef PERIADAPT_HAVE_MPI

@@ -37,4 +37,9 @@ template <class T>
 void all_gather_into(const std::vector<T>& mine, std::vector<T>& out,
                      std::vector<int>* counts = nullptr);
 
+// Point to point with a few peers: sends send[k] to peers[k] and receives recv[k] from it, whose
+// sizes the caller set (every rank lists the other as a peer). No-op on one rank.
+void exchange_with(const std::vector<int>& peers, const std::vector<std::vector<double>>& send,
+                   std::vector<std::vector<double>>& recv);
+
 }  // namespace periadapt::mpi

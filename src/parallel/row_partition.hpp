@@ -48,9 +48,11 @@ struct RowPartition {
   bool ghost_pass = false;
   std::vector<std::uint32_t> region;        // ascending
   std::vector<char> in_region;              // per node
-  std::vector<std::uint32_t> exports;       // owned nodes in another rank's region
-  std::vector<std::uint32_t> all_exports;   // every rank's, in rank order
-  std::vector<int> export_counts;
+  // The ranks this one exchanges ghost forces with; per peer, the owned nodes in its region
+  // (sent) and the peer's nodes in this rank's region (received), ascending.
+  std::vector<int> peers;
+  std::vector<std::vector<std::uint32_t>> send_ids, recv_ids;
+  std::size_t ghosts = 0;  // nodes of this rank's region it does not own
   long region_generation = -1;
   long region_steps = 0;  // steps that integrated the region alone
 };

@@ -21,7 +21,8 @@ nlohmann::json ranks_json(const RowPartition& p) {
           {"bond_imbalance", p.imbalance},
           {"owned_integration", p.ghost_mode},
           {"region_nodes_rank0", p.ghost_mode ? nlohmann::json(p.region.size()) : nlohmann::json(nullptr)},
-          {"ghost_exchange_nodes", p.ghost_mode ? nlohmann::json(p.all_exports.size()) : nlohmann::json(nullptr)},
+          {"ghost_nodes_rank0", p.ghost_mode ? nlohmann::json(p.ghosts) : nlohmann::json(nullptr)},
+          {"ghost_peers_rank0", p.ghost_mode ? nlohmann::json(p.peers.size()) : nlohmann::json(nullptr)},
           {"region_steps", p.region_steps}};
 }
 
