@@ -16,8 +16,7 @@ std::size_t own_offset(const std::vector<int>& counts) {
 }  // namespace
 
 void refresh_ghost_layer(RowPartition& p, const BondFamilies& bf,
-                         const std::vector<std::uint32_t>& around,
-                         const std::vector<std::uint32_t>& always) {
+                         const std::vector<std::uint32_t>& around) {
   if (p.region_generation == p.generation) return;
   const std::size_t n = p.mine.size();
   std::vector<char> in(p.mine.begin(), p.mine.end());
@@ -25,8 +24,6 @@ void refresh_ghost_layer(RowPartition& p, const BondFamilies& bf,
     in[i] = 1;
     for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) in[bf.neighbor[k]] = 1;
   }
-  for (std::uint32_t i : always)
-    if (i < n) in[i] = 1;
   p.region.clear();
   std::vector<std::uint32_t> ghosts;
   for (std::size_t i = 0; i < n; ++i) {

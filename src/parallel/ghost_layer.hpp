@@ -1,11 +1,12 @@
 #pragma once
 // Owned integration in distributed explicit runs. Each rank advances only the nodes its force
 // pass reads (its region: its rows, the rows whose dilatations or dual memberships it evaluates,
-// their neighbours, and every loaded or driven node, whose work and reactions every rank sums),
+// and their neighbours; each rank sums the external work of its own loaded and driven nodes),
 // and after each pass receives from their owners the forces of the region's nodes it does not
 // own. The nodes outside its region go stale; a sync gathers every node's state from its owner
 // whenever something reads the whole model (outputs, triggers, events, checkpoints), so that
-// every rank then holds what the serial run holds, bit for bit.
+// every rank then holds what the serial run holds, bit for bit (the external work, summed per rank,
+// up to round-off).
 #include <cstdint>
 #include <vector>
 
@@ -16,12 +17,10 @@
 namespace periadapt {
 
 // Rebuilds p.region, p.in_region and the peers' send and receive lists for the current owners
-// when they changed (collective). `always`: nodes in every rank's region (loaded and driven nodes);
-// `around`: the rows whose positions' neighbours the pass also reads (LPS dilatations, dual
-// memberships), or p.owned.
+// when they changed (collective). `around`: the rows whose neighbours' positions the pass reads
+// (its rows, and the rows of the LPS dilatations or dual memberships it evaluates).
 void refresh_ghost_layer(RowPartition& p, const BondFamilies& bf,
-                         const std::vector<std::uint32_t>& around,
-                         const std::vector<std::uint32_t>& always);
+                         const std::vector<std::uint32_t>& around);
 
 // After a pass: each rank sends its peers the forces of its nodes in their regions, and receives
 // its ghosts' forces from their owners (point to point; every rank calls it).

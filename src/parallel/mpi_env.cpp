@@ -116,6 +116,13 @@ void exchange_with(const std::vector<int>& peers, const std::vector<std::vector<
 #endif
 }
 
+double sum_real(double v) {
+#ifdef PERIADAPT_HAVE_MPI
+  if (g_active) MPI_Allreduce(MPI_IN_PLACE, &v, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+#endif
+  return v;
+}
+
 template <class T>
 void all_gather_into(const std::vector<T>& mine, std::vector<T>& out, std::vector<int>* counts) {
 #ifdef PERIADAPT_HAVE_MPI

@@ -28,6 +28,8 @@ inline bool distributed() { return size() > 1; }
 // Largest value over the ranks.
 long max(long v);
 double max_real(double v);
+// Sum over the ranks.
+double sum_real(double v);
 // Each rank's `mine` concatenated in rank order, and (counts) how many each gave.
 template <class T>
 std::vector<T> all_gather(const std::vector<T>& mine, std::vector<int>* counts = nullptr);

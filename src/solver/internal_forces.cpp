@@ -38,11 +38,7 @@ std::size_t distributed_forces(Model& m, bool allow_breaking, const std::vector<
     };
     if (dual) add(true);
     if (m.formulation.state_based()) add(false);
-    // Loaded and driven nodes: every rank sums their work and reactions.
-    std::vector<std::uint32_t> always;
-    for (const BodyLoad& l : m.loads) always.insert(always.end(), l.nodes.begin(), l.nodes.end());
-    for (const PrescribedMotion& pm : m.motions) always.insert(always.end(), pm.nodes.begin(), pm.nodes.end());
-    refresh_ghost_layer(m.partition, m.bonds, around, always);
+    refresh_ghost_layer(m.partition, m.bonds, around);
   }
   const std::vector<std::uint32_t> mine = owned_rows(m.partition, rows);
   // Energy densities when any rank asks (rank 0's observers ask where the others write nothing):

@@ -178,6 +178,7 @@ void VelocityVerlet::impose_motions(double t, bool velocities_only) {
   NodeSet& ns = m_.nodes;
   for (const PrescribedMotion& pm : m_.motions) {
     for (std::uint32_t i : pm.nodes) {
+      if (outside_region(i)) continue;
       const double X = ns.x[0][i], Y = ns.x[1][i], Z = ns.x[2][i];
       for (int d = 0; d < ns.dim; ++d) {
         if (!pm.component[d]) continue;
@@ -429,7 +430,7 @@ void VelocityVerlet::compute_accelerations(const std::vector<std::uint32_t>* row
   for (std::size_t q = 0; q < fixed_dofs_.size(); ++q) {
     const std::size_t i = fixed_dofs_[q] / 3;
     const int d = static_cast<int>(fixed_dofs_[q] % 3);
-    if (!listed.empty() && !listed[i]) continue;
+    if ((!listed.empty() && !listed[i]) || outside_region(i)) continue;
     const double acc = step_ > 0 ? (ns.v[d][i] - v_prev_fixed_[q]) / dt_ : 0.0;
     reaction_[q] = ns.density[i] * acc - ns.f[d][i] - (loaded ? body_[d][i] : 0.0);
     ns.a[d][i] = 0.0;
@@ -472,16 +473,22 @@ std::array<double, 3> VelocityVerlet::applied_force(const BodyLoad& load) const 
 
 double VelocityVerlet::external_power() const {
   const NodeSet& ns = m_.nodes;
+  // Owned integration: each rank sums the terms of its own nodes (another rank's may be stale
+  // here) and the ranks add their sums: the serial sum up to round-off.
+  const RowPartition& part = m_.partition;
+  const bool owned = part.ghost_mode && part.mine.size() == ns.size();
+  if (m_.loads.empty() && fixed_dofs_.empty()) return 0.0;
   double p = 0;
   for (const BodyLoad& L : m_.loads)
     for (std::uint32_t i : L.nodes)
-      for (int d = 0; d < ns.dim; ++d) p += body_[d][i] * ns.v[d][i] * ns.volume[i];
+      if (!owned || part.mine[i])
+        for (int d = 0; d < ns.dim; ++d) p += body_[d][i] * ns.v[d][i] * ns.volume[i];
   for (std::size_t q = 0; q < fixed_dofs_.size(); ++q) {
     const std::size_t i = fixed_dofs_[q] / 3;
     const int d = static_cast<int>(fixed_dofs_[q] % 3);
-    p += reaction_[q] * ns.v[d][i] * ns.volume[i];
+    if (!owned || part.mine[i]) p += reaction_[q] * ns.v[d][i] * ns.volume[i];
   }
-  return p;
+  return owned ? mpi::sum_real(p) : p;
 }
 
 void VelocityVerlet::initialize() {
@@ -575,6 +582,23 @@ void VelocityVerlet::sync_state() {
   if (mpi::max(fields) != -mpi::max(-fields))
     throw std::logic_error("owned integration: the ranks keep different per-row fields");
   gather_owned_state(m_.partition, ns, per_row);
+  // The prescribed components' reactions and start-of-step velocities, from their owners.
+  const RowPartition& part = m_.partition;
+  std::vector<double> mine;
+  for (std::size_t q = 0; q < fixed_dofs_.size(); ++q)
+    if (part.mine[fixed_dofs_[q] / 3]) {
+      mine.push_back(reaction_[q]);
+      mine.push_back(v_prev_fixed_[q]);
+    }
+  std::vector<int> counts;
+  const std::vector<double> all = mpi::all_gather(mine, &counts);
+  std::vector<std::size_t> at(counts.size(), 0);
+  for (std::size_t r = 1; r < counts.size(); ++r) at[r] = at[r - 1] + static_cast<std::size_t>(counts[r - 1]);
+  for (std::size_t q = 0; q < fixed_dofs_.size(); ++q) {
+    const auto r = static_cast<std::size_t>(part.owner[fixed_dofs_[q] / 3]);
+    reaction_[q] = all[at[r]++];
+    v_prev_fixed_[q] = all[at[r]++];
+  }
   stale_ = false;
 }
 
@@ -650,7 +674,7 @@ bool VelocityVerlet::step() {
     if (pm.kind == PrescribedMotion::Kind::Velocity)
       for (std::uint32_t i : pm.nodes)
         for (int d = 0; d < dim; ++d)
-          if (pm.component[d]) driven_u_.push_back(ns.u[d][i]);
+          if (pm.component[d] && !outside_region(i)) driven_u_.push_back(ns.u[d][i]);
   const StepArrays sa = arrays();
   std::size_t nbad = with_dim(dim, [&](auto D) {
     return with_bool(undo_enabled_, [&](auto K) {
@@ -668,7 +692,7 @@ bool VelocityVerlet::step() {
       if (pm.kind == PrescribedMotion::Kind::Velocity)
         for (std::uint32_t i : pm.nodes)
           for (int d = 0; d < dim; ++d)
-            if (pm.component[d]) {
+            if (pm.component[d] && !outside_region(i)) {
               ns.u[d][i] = driven_u_[q++] + dt * ns.v[d][i];
               ns.cur[4 * static_cast<std::size_t>(i) + d] = ns.x[d][i] + ns.u[d][i];
               nbad += !(std::abs(ns.u[d][i]) <= lim);

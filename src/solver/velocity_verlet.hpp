@@ -122,6 +122,8 @@ class VelocityVerlet {
  private:
   void apply_loads(double t);
   bool region_step_allowed();
+  // A node this rank leaves stale during the current region step.
+  bool outside_region(std::size_t i) const { return ghost_step_ && !m_.partition.in_region[i]; }
   // closing_kick: also the step's closing half-kick (from close_kick_).
   void compute_accelerations(const std::vector<std::uint32_t>* rows = nullptr,
                              bool subcycle = false, bool closing_kick = false);

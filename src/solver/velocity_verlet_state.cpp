@@ -36,7 +36,8 @@ void VelocityVerlet::save_state(ArchiveWriter& w) const {
   w.put(close_kick_);
   w.put(energy_requests_);
   w.put(energy_);
-  w.put(energy_step_);
+  // Densities of this rank's rows only belong to no state a restart could read them for.
+  w.put(energy_owned_only_ ? -1L : energy_step_);
   w.put(fixed_dofs_);
   w.put(reaction_);
   w.put(body_);
