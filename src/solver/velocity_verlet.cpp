@@ -166,8 +166,17 @@ void VelocityVerlet::apply_loads(double t) {
     for (auto& b : body_) b.clear();
     return;
   }
-  for (auto& b : body_) b.assign(ns.size(), 0.0);
+  // Only the nodes loaded last time hold a density: clearing those (not every node) keeps this
+  // O(loaded) (an event may have changed the lists since).
+  if (body_[0].size() == ns.size()) {
+    for (std::uint32_t i : body_nodes_)
+      for (auto& b : body_) b[i] = 0.0;
+  } else {
+    for (auto& b : body_) b.assign(ns.size(), 0.0);
+  }
+  body_nodes_.clear();
   for (const BodyLoad& L : m_.loads) {
+    body_nodes_.insert(body_nodes_.end(), L.nodes.begin(), L.nodes.end());
     const double amp = L.amplitude(t);
     for (std::uint32_t i : L.nodes)
       for (int d = 0; d < ns.dim; ++d) body_[d][i] += amp * L.density[d];

@@ -196,6 +196,7 @@ class VelocityVerlet {
   // Body-force densities of the loaded nodes' components (node*3 + d), from the loads at the
   // current time; empty without loads, so load-free models do not carry 24 B/node for them.
   std::array<std::vector<double>, 3> body_;
+  std::vector<std::uint32_t> body_nodes_;  // the nodes body_ was last written for
   std::vector<double> v_prev_fixed_;
 };
 

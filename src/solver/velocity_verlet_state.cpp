@@ -83,6 +83,8 @@ void VelocityVerlet::restore_state(ArchiveReader& r) {
   r.get(fixed_dofs_);
   r.get(reaction_);
   r.get(body_);
+  for (auto& b : body_) b.clear();  // apply_loads() writes them afresh before any step reads them
+  body_nodes_.clear();
   r.get(v_prev_fixed_);
   std::vector<Impactor> impactors;
   r.get(impactors);
