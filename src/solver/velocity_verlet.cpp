@@ -33,7 +33,7 @@ namespace {
 // Opening half-kick (kick[rate] or half_dt) and drift of the listed nodes (all without a list);
 // returns the number of
 // displacement components beyond `lim` or non-finite.
-template <int D, bool Keep, bool Multi>
+template <int D, bool Keep, bool Multi, bool Listed>
 std::size_t kick_drift(const StepArrays& s, const std::uint32_t* rows, std::size_t n,
                        const double* kick, double half_dt, double dt, double lim) {
   const double* x[D];
@@ -48,7 +48,7 @@ std::size_t kick_drift(const StepArrays& s, const std::uint32_t* rows, std::size
   std::size_t bad = 0;
 #pragma omp parallel for simd schedule(static) reduction(+ : bad)
   for (std::size_t r = 0; r < n; ++r) {
-    const std::size_t i = rows ? rows[r] : r;
+    const std::size_t i = Listed ? rows[r] : r;
     const double c = Multi ? kick[rate[i]] : half_dt;
     for (int d = 0; d < D; ++d) {
       if constexpr (Keep) {
@@ -688,8 +688,11 @@ bool VelocityVerlet::step() {
   std::size_t nbad = with_dim(dim, [&](auto D) {
     return with_bool(undo_enabled_, [&](auto K) {
       return with_bool(sa.rate != nullptr, [&](auto M) {
-        return kick_drift<D(), K(), M()>(sa, region ? region->data() : nullptr,
-                                         region ? region->size() : n, open_kick_.data(), hdt, dt, lim);
+        return with_bool(region != nullptr, [&](auto L) {
+          return kick_drift<D(), K(), M(), L()>(sa, region ? region->data() : nullptr,
+                                                region ? region->size() : n, open_kick_.data(), hdt,
+                                                dt, lim);
+        });
       });
     });
   });
