@@ -31,8 +31,7 @@ struct StepArrays {
 namespace {
 
 // Opening half-kick (kick[rate] or half_dt) and drift of the listed nodes (all without a list);
-// returns the number of
-// displacement components beyond `lim` or non-finite.
+// returns the number of displacement components beyond `lim` or non-finite.
 template <int D, bool Keep, bool Multi, bool Listed>
 std::size_t kick_drift(const StepArrays& s, const std::uint32_t* rows, std::size_t n,
                        const double* kick, double half_dt, double dt, double lim) {
@@ -90,8 +89,8 @@ void accelerate(const StepArrays& s, const std::uint32_t* rows, std::size_t n, c
   }
 }
 
-// v += kick a over the listed nodes (all without a list): the closing half-kick of constrained models, given after their
-// constrained components' accelerations were zeroed.
+// v += kick a over the listed nodes (all without a list): the closing half-kick of constrained
+// models, given after their constrained components' accelerations were zeroed.
 template <int D, bool Multi>
 void kick_all(const StepArrays& s, const std::uint32_t* rows, std::size_t n, const double* kick,
               double half_dt) {
@@ -207,7 +206,8 @@ void VelocityVerlet::impose_motions(double t, bool velocities_only) {
 }
 
 void VelocityVerlet::request_energy_at(long step, bool every_row) {
-  std::vector<long>& list = every_row || !m_.partition.ghost_mode ? energy_requests_ : owned_energy_requests_;
+  std::vector<long>& list =
+      every_row || !m_.partition.ghost_mode ? energy_requests_ : owned_energy_requests_;
   if (std::find(list.begin(), list.end(), step) == list.end()) list.push_back(step);
 }
 
@@ -448,8 +448,8 @@ void VelocityVerlet::compute_accelerations(const std::vector<std::uint32_t>* row
     with_dim(dim, [&](auto D) {
       with_bool(sa.rate != nullptr, [&](auto M) {
         const std::vector<std::uint32_t>* region = ghost_step_ ? &m_.partition.region : nullptr;
-        kick_all<D(), M()>(sa, region ? region->data() : nullptr, region ? region->size() : ns.size(),
-                           close_kick_.data(), 0.5 * dt_);
+        kick_all<D(), M()>(sa, region ? region->data() : nullptr,
+                           region ? region->size() : ns.size(), close_kick_.data(), 0.5 * dt_);
       });
     });
 }
@@ -586,7 +586,8 @@ void VelocityVerlet::sync_state() {
   std::vector<std::vector<double>*> per_row;
   if (m_.track_breakable_stretch && m_.breakable_stretch.size() == ns.size())
     per_row.push_back(&m_.breakable_stretch);
-  if (multirate_ && energy_check_every_ > 0 && energy_.size() == ns.size()) per_row.push_back(&energy_);
+  if (multirate_ && energy_check_every_ > 0 && energy_.size() == ns.size())
+    per_row.push_back(&energy_);
   const long fields = static_cast<long>(per_row.size());
   if (mpi::max(fields) != -mpi::max(-fields))
     throw std::logic_error("owned integration: the ranks keep different per-row fields");
