@@ -4,17 +4,6 @@
 
 namespace periadapt {
 
-namespace {
-
-// Where this rank's own segment starts in a rank-ordered gather with `counts` entries per rank.
-std::size_t own_offset(const std::vector<int>& counts) {
-  std::size_t at = 0;
-  for (int r = 0; r < mpi::rank(); ++r) at += static_cast<std::size_t>(counts[static_cast<std::size_t>(r)]);
-  return at;
-}
-
-}  // namespace
-
 void refresh_ghost_layer(RowPartition& p, const BondFamilies& bf,
                          const std::vector<std::uint32_t>& around) {
   if (p.region_generation == p.generation) return;
@@ -98,7 +87,7 @@ void gather_owned_state(const RowPartition& p, NodeSet& ns,
   }
   std::vector<int> counts;
   mpi::all_gather_into(values, all_values, &counts);
-  const std::size_t own_begin = own_offset(counts) / width, own_end = own_begin + p.owned.size();
+  const std::size_t own_begin = mpi::own_offset(counts) / width, own_end = own_begin + p.owned.size();
   for (std::size_t k = 0; k < p.all_owned.size(); ++k) {
     if (k == own_begin) k = own_end;
     if (k >= p.all_owned.size()) break;

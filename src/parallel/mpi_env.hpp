@@ -2,6 +2,7 @@
 // The MPI world of a run: rank, size and the few collectives the distributed force pass and the
 // run loop need. A build without MPI, and a process not started by mpirun, is one rank: every
 // call below is then a no-op that returns its input.
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -38,6 +39,13 @@ std::vector<T> all_gather(const std::vector<T>& mine, std::vector<int>* counts =
 template <class T>
 void all_gather_into(const std::vector<T>& mine, std::vector<T>& out,
                      std::vector<int>* counts = nullptr);
+
+// Where this rank's segment starts in a rank-ordered gather with counts[r] entries from rank r.
+inline std::size_t own_offset(const std::vector<int>& counts) {
+  std::size_t at = 0;
+  for (int r = 0; r < rank(); ++r) at += static_cast<std::size_t>(counts[static_cast<std::size_t>(r)]);
+  return at;
+}
 
 // Point to point with a few peers: sends send[k] to peers[k] and receives recv[k] from it, whose
 // sizes the caller set (every rank lists the other as a peer). No-op on one rank.

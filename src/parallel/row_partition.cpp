@@ -244,9 +244,7 @@ void share_all_rows(const RowPartition& p, NodeSet& ns, const std::vector<std::u
   static std::vector<int> value_counts;
   mpi::all_gather_into(values, all_values, &value_counts);
   // This rank's own segment already holds these values: only the others' rows are written.
-  std::size_t own_begin = 0;
-  for (int r = 0; r < mpi::rank(); ++r) own_begin += static_cast<std::size_t>(value_counts[static_cast<std::size_t>(r)]);
-  own_begin /= per_row;
+  const std::size_t own_begin = mpi::own_offset(value_counts) / per_row;
   const std::size_t own_end = own_begin + rows.size();
   for (std::size_t k = 0; k < all_rows.size(); ++k) {
     if (k == own_begin) k = own_end;
