@@ -70,7 +70,7 @@ a, b = sys.argv[1], sys.argv[2]
 # Wall-clock measures and paths; everything else (crack times, energies, counts) must agree.
 timing = re.compile(r"^(wall_time_s|setup_time_s|solver_time_s|sampling_time_s|"
                     r"snapshot_output_time_s|family_build_time_s|family_build_in_steps|"
-                    r"refinement_wall_s|bond_evals_per_s|peak_rss_bytes|outputs|deck|"
+                    r"refinement_wall_s|bond_evals_per_s|peak_rss_bytes|rss_end_bytes|outputs|deck|"
                     r"assemble_time_s|solve_time_s|event_wall_s)$")
 
 def table(path):

@@ -86,7 +86,7 @@ for f in snaps:
 skip = {"wall_time_s", "setup_time_s", "solver_time_s", "sampling_time_s", "snapshot_output_time_s",
         "bond_evals_per_s", "family_build_time_s", "family_build_in_steps", "peak_rss_bytes",
         "refinement_wall_s", "event_wall_s", "outputs", "threads", "ranks", "restarted_from_step",
-        "checkpoint"}
+        "checkpoint", "memory"}
 def strip(j):
     if isinstance(j, dict): return {k: strip(v) for k, v in j.items() if k not in skip}
     if isinstance(j, list): return [strip(v) for v in j]
@@ -116,7 +116,7 @@ while (($#)); do
     else echo "FAIL $name, $np ranks: $r"; fail=1; fi
     # Owned integration (explicit runs without contact, impactors, overlay or ghost-force table):
     # the equality above held with ranks that left nodes outside their region stale.
-    if r=$(python3 - "$out" <<'PY'
+    if r=$(python3 - "$out" "$tmp/$name-1" "$name" <<'PY'
 import json, os, sys
 j = json.load(open(os.path.join(sys.argv[1], "summary.json")))
 r = j.get("ranks", {})
@@ -124,8 +124,18 @@ if not r.get("owned_integration"): print("whole-model integration"); sys.exit(0)
 n = j["nodes"]["slots"]
 if r["region_steps"] < 1 or r["region_nodes_rank0"] >= n:
     sys.exit(f"owned integration idle: {r}")
+held = ""
+if r.get("held_bond_rows"):
+    # Rank 0 kept its own rows (LPS: its region's) and freed the others' bond arrays.
+    serial = json.load(open(os.path.join(sys.argv[2], "summary.json")))["memory"]["model_bytes"]
+    mine = j["memory"]["model_bytes"]
+    if not (r["bond_rows_rank0"] < n and mine < serial):
+        sys.exit(f"held bond rows: {r['bond_rows_rank0']} rows, {mine} B against serial {serial} B")
+    held = f"; holds {r['bond_rows_rank0']} bond rows, model {mine / serial:.3f} of the serial run's"
+elif "held-" in sys.argv[3]:
+    sys.exit("held bond rows expected")
 print(f"{r['region_steps']} of {j['steps']} steps advanced rank 0's region alone "
-      f"({r['region_nodes_rank0']} of {n} nodes)")
+      f"({r['region_nodes_rank0']} of {n} nodes){held}")
 PY
     ); then echo "ok   $name, $np ranks: $r"; else echo "FAIL $name, $np ranks: $r"; fail=1; fi
   done

@@ -40,7 +40,7 @@ for f in files:
         sys.exit(f"{f} differs")
 timing = {"wall_time_s", "setup_time_s", "solver_time_s", "sampling_time_s",
           "snapshot_output_time_s", "bond_evals_per_s", "family_build_time_s",
-          "family_build_in_steps", "peak_rss_bytes", "refinement_wall_s", "restarted_from_step",
+          "family_build_in_steps", "peak_rss_bytes", "rss_end_bytes", "refinement_wall_s", "restarted_from_step",
           "outputs", "threads", "event_wall_s"}
 def strip(j):
     if isinstance(j, dict): return {k: strip(v) for k, v in j.items() if k not in timing}

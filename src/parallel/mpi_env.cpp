@@ -35,6 +35,8 @@ template <>
 MPI_Datatype type_of<std::uint64_t>() { return MPI_UINT64_T; }
 template <>
 MPI_Datatype type_of<int>() { return MPI_INT; }
+template <>
+MPI_Datatype type_of<float>() { return MPI_FLOAT; }
 #endif
 }  // namespace
 
@@ -149,10 +151,33 @@ std::vector<T> all_gather(const std::vector<T>& mine, std::vector<int>* counts) 
   return out;
 }
 
+template <class T>
+std::vector<T> gather_to_root(const std::vector<T>& mine) {
+#ifdef PERIADAPT_HAVE_MPI
+  if (g_active) {
+    std::vector<int> n(static_cast<std::size_t>(g_size)), at(static_cast<std::size_t>(g_size));
+    int own = static_cast<int>(mine.size());
+    MPI_Gather(&own, 1, MPI_INT, n.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
+    std::vector<T> out;
+    if (g_rank == 0) {
+      std::exclusive_scan(n.begin(), n.end(), at.begin(), 0);
+      out.resize(static_cast<std::size_t>(at.back() + n.back()));
+    }
+    MPI_Gatherv(mine.data(), own, type_of<T>(), out.data(), n.data(), at.data(), type_of<T>(), 0,
+                MPI_COMM_WORLD);
+    return out;
+  }
+#endif
+  return mine;
+}
+
 template void all_gather_into(const std::vector<double>&, std::vector<double>&, std::vector<int>*);
 template std::vector<double> all_gather(const std::vector<double>&, std::vector<int>*);
 template std::vector<std::uint32_t> all_gather(const std::vector<std::uint32_t>&, std::vector<int>*);
 template std::vector<std::uint64_t> all_gather(const std::vector<std::uint64_t>&, std::vector<int>*);
 template std::vector<int> all_gather(const std::vector<int>&, std::vector<int>*);
+template std::vector<double> gather_to_root(const std::vector<double>&);
+template std::vector<float> gather_to_root(const std::vector<float>&);
+template std::vector<std::uint32_t> gather_to_root(const std::vector<std::uint32_t>&);
 
 }  // namespace periadapt::mpi

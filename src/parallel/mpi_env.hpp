@@ -40,6 +40,11 @@ template <class T>
 void all_gather_into(const std::vector<T>& mine, std::vector<T>& out,
                      std::vector<int>* counts = nullptr);
 
+// Each rank's `mine` concatenated in rank order on rank 0 alone (the others get an empty
+// vector): what one rank writes, without a copy of it on every rank.
+template <class T>
+std::vector<T> gather_to_root(const std::vector<T>& mine);
+
 // Where this rank's segment starts in a rank-ordered gather with counts[r] entries from rank r.
 inline std::size_t own_offset(const std::vector<int>& counts) {
   std::size_t at = 0;

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "parallel/ghost_layer.hpp"
+#include "parallel/held_rows.hpp"
 #include "parallel/mpi_env.hpp"
 
 #ifdef PERIADAPT_HAVE_MPI
@@ -222,6 +223,8 @@ std::vector<std::uint32_t> owned_rows(const RowPartition& p, const std::vector<s
 
 namespace {
 
+constexpr std::uint64_t kNotHeld = ~std::uint64_t{0};
+
 // Every computed row's force, and W and the breakable stretch when given, to every rank.
 void share_all_rows(const RowPartition& p, NodeSet& ns, const std::vector<std::uint32_t>& rows,
                     bool full, std::vector<double>* W, std::vector<double>* stretch) {
@@ -302,8 +305,12 @@ std::size_t share_force_pass(const RowPartition& p, NodeSet& ns, BondFamilies& b
   hit.erase(std::unique(hit.begin(), hit.end()), hit.end());
   std::vector<double> hit_weight;
   for (std::uint32_t i : hit) hit_weight.push_back(ns.broken_weight[i]);
+  // Bonds travel by their index in the whole model's arrays (held rows: parallel/held_rows.hpp).
+  std::vector<std::uint64_t> whole_here(broken_here.size());
+  for (std::size_t q = 0; q < broken_here.size(); ++q)
+    whole_here[q] = whole_bond_index(p, bf, row_of_here[q], broken_here[q]);
   std::vector<int> counts;
-  const std::vector<std::uint64_t> broken = mpi::all_gather(broken_here, &counts);
+  std::vector<std::uint64_t> broken = mpi::all_gather(whole_here, &counts);
   std::vector<int> hit_counts;
   const std::vector<std::uint32_t> all_hit = mpi::all_gather(hit, &hit_counts);
   const std::vector<double> all_hit_weight = mpi::all_gather(hit_weight);
@@ -312,14 +319,23 @@ std::size_t share_force_pass(const RowPartition& p, NodeSet& ns, BondFamilies& b
   for (int r = 0; r < static_cast<int>(counts.size()); ++r) {
     const std::size_t end = at + static_cast<std::size_t>(counts[static_cast<std::size_t>(r)]);
     const std::size_t hend = hat + static_cast<std::size_t>(hit_counts[static_cast<std::size_t>(r)]);
-    if (r != mpi::rank()) {
-      for (std::size_t q = at; q < end; ++q) bf.beta[broken[q]] = -bf.beta[broken[q]];
+    const bool mine = r == mpi::rank();
+    for (std::size_t q = at; q < end; ++q) {
+      // The log names this rank's copies; a bond in a row it does not hold leaves it.
+      std::uint64_t k = broken[q];
+      const bool held = held_bond_index(p, bf, broken[q], k);
+      if (!mine && held) bf.beta[k] = -bf.beta[k];
+      broken[q] = held ? k : kNotHeld;
+    }
+    if (!mine) {
       for (std::size_t q = hat; q < hend; ++q) ns.broken_weight[all_hit[q]] = all_hit_weight[q];
     }
     at = end;
     hat = hend;
   }
-  if (log) log->insert(log->end(), broken.begin(), broken.end());
+  if (log)
+    for (std::uint64_t k : broken)
+      if (k != kNotHeld) log->push_back(k);
   return broken.size();
 }
 

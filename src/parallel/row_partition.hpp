@@ -1,5 +1,5 @@
 #pragma once
-// Distributed runs (mpirun -np N): every rank holds the whole model, and each bond row's forces
+// Distributed runs (mpirun -np N): every rank holds the whole node set, and each bond row's forces
 // are computed on one rank only, its owner; the owners then share what they computed (forces,
 // broken bonds, broken weights, energy densities when asked), so that every rank ends each force
 // pass in the state a serial pass gives, bit for bit. The rows are split by Zoltan's recursive
@@ -7,10 +7,11 @@
 // row's bond count. When refinement adds nodes, children join their parent's rank; once the
 // largest rank's bonds pass the mean by more than the deck's threshold, Zoltan repartitions
 // starting from the current owners (LB_APPROACH REPARTITION, which keeps moves few). Since every
-// rank holds the whole state, a move hands over ownership only: no bond state travels. Refinement
+// rank holds the whole state there, a move hands over ownership only: no bond state travels. Refinement
 // events and observers run on every rank alike on the same data; rank 0 writes the files. The
 // explicit solver integrates each rank's region only where it can (parallel/ghost_layer.hpp)
-// and brings the rest up to date before anything reads it.
+// and brings the rest up to date before anything reads it; in a run without refinement events
+// each rank then keeps only the bond rows its passes read (parallel/held_rows.hpp).
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -55,6 +56,14 @@ struct RowPartition {
   std::size_t ghosts = 0;  // nodes of this rank's region it does not own
   long region_generation = -1;
   long region_steps = 0;  // steps that integrated the region alone
+  // Held bond rows (parallel/held_rows.hpp): with hold_rows asked for, the first pass leaves
+  // this rank's bond arrays with the rows its passes read and no others (rows_held); the
+  // whole model's rows begin at whole_offsets, which index the bonds the ranks exchange.
+  bool hold_rows = false;
+  bool rows_held = false;
+  std::vector<std::uint64_t> whole_offsets;
+  std::uint64_t whole_capacity = 0;  // the whole arrays' room (a checkpoint records it)
+  std::size_t held_row_count = 0;
 };
 
 // When the partition is active and the nodes or bonds changed since the last call: the first

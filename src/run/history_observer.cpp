@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "analysis/energy.hpp"
+#include "parallel/held_rows.hpp"
 #include "run/crack_tip_observer.hpp"
 #include "run/output_regions.hpp"
 #include "run/resultants.hpp"
@@ -55,7 +56,7 @@ void HistoryObserver::on_step(RunView& view, long step, bool closing) {
       "{},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{},{},{}{}{}{:.4f}\n",
       step, vv.time(), K_, U_, vv.external_work(), K_ + U_ - vv.external_work(), vv.broken_bonds(),
       damaged_nodes_, damage_sum_, tip[0], tip[1], tip[2], speed, active,
-      view.model.bonds.num_bonds(), resultants,
+      whole_bond_count(view.model.partition, view.model.bonds), resultants,
       region_columns(view.deck.output.regions, ns, view.energy_density(), ns.f),
       rank_column_ ? fmt::format("{:.4f},", view.model.partition.imbalance) : std::string(),
       view.elapsed_s());

@@ -14,6 +14,7 @@
 #include "core/binary_archive.hpp"
 #include "input/deck_error.hpp"
 #include "model/model_state.hpp"
+#include "parallel/held_rows.hpp"
 #include "parallel/mpi_env.hpp"
 #include "run/checkpoint_file.hpp"
 #include "run/crack_tip_observer.hpp"
@@ -166,6 +167,9 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
   if (!restart) vv.initialize();
   std::unique_ptr<Adaptor> adaptor;
   if (dk.adapt.enabled) adaptor = std::make_unique<Adaptor>(m, vv, dk.adapt);
+  // Without refinement events (or multi-rate classes, whose idle rows' energies every rank
+  // evaluates) only each rank's own passes read its bond rows: it keeps those alone.
+  m.partition.hold_rows = vv.owned_integration() && !adaptor && !dk.multirate;
 
   RunView view(dk, m, vv, adaptor.get(), dir, opt.write_files, ts.steps, t_start);
   // Observers, in the order they see each step: the tip before the history row that shows it;
@@ -281,7 +285,15 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
       if (mpi::max(wanted)) vv.sync_state();
     }
     observe(s, false);
-    if (opt.write_files && checkpoint) write_run_checkpoint();
+    if (checkpoint && m.partition.rows_held) {
+      // The owners' rows, assembled on rank 0 for as long as it writes them.
+      BondFamilies whole = gather_whole_bonds(m.partition, m.bonds);
+      std::swap(m.bonds, whole);
+      if (opt.write_files) write_run_checkpoint();
+      std::swap(m.bonds, whole);
+    } else if (opt.write_files && checkpoint) {
+      write_run_checkpoint();
+    }
     if (res.interrupted) observe(s, true);
     std::string note;
     for (const auto& o : observers)

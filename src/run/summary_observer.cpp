@@ -4,6 +4,7 @@
 #include <omp.h>
 
 #include "analysis/energy.hpp"
+#include "parallel/held_rows.hpp"
 #include "core/process_memory.hpp"
 #include "io/atomic_output.hpp"
 #include "run/checkpoint_file.hpp"
@@ -23,7 +24,9 @@ nlohmann::json ranks_json(const RowPartition& p) {
           {"region_nodes_rank0", p.ghost_mode ? nlohmann::json(p.region.size()) : nlohmann::json(nullptr)},
           {"ghost_nodes_rank0", p.ghost_mode ? nlohmann::json(p.ghosts) : nlohmann::json(nullptr)},
           {"ghost_peers_rank0", p.ghost_mode ? nlohmann::json(p.peers.size()) : nlohmann::json(nullptr)},
-          {"region_steps", p.region_steps}};
+          {"region_steps", p.region_steps},
+          {"held_bond_rows", p.rows_held},
+          {"bond_rows_rank0", p.rows_held ? nlohmann::json(p.held_row_count) : nlohmann::json(nullptr)}};
 }
 
 SummaryObserver::SummaryObserver(const RunView& view) : initial_nodes_(view.model.nodes.size()) {}
@@ -63,7 +66,7 @@ void SummaryObserver::finish(RunView& view, RunResult& res) {
   j["nodes"]["initial"] = initial_nodes_;
   j["nodes"]["final"] = active;
   j["nodes"]["slots"] = ns.size();
-  j["bonds"] = m.bonds.num_bonds();
+  j["bonds"] = whole_bond_count(m.partition, m.bonds);
   j["precrack_bonds"] = m.precrack_bonds;
   j["broken_bonds"] = vv.broken_bonds();
   if (!view.deck.output.regions.empty()) {
@@ -97,15 +100,19 @@ void SummaryObserver::finish(RunView& view, RunResult& res) {
   j["bond_evaluations"] = vv.bond_evaluations();
   {
     // Resident memory of the model arrays, per bond and per node, and the process peak (which
-    // also holds the transient family-build buffers and output buffers).
+    // also holds the transient family-build buffers and output buffers). Distributed runs: rank
+    // 0's (with held bond rows, its own rows' bonds and the whole model's row index).
     const double nn = static_cast<double>(ns.size());
     const std::size_t per_node = model_bytes_per_node(m);
     const double step_s = vv.step_count() > 0 ? tot.solver_s / vv.step_count() : 0.0;
     j["memory"] = {{"bytes_per_bond", BondFamilies::bytes_per_bond()},
                    {"bytes_per_node", per_node},
                    {"model_bytes", static_cast<double>(m.bonds.bond_array_bytes()) +
-                                       nn * static_cast<double>(per_node)},
-                   {"peak_rss_bytes", peak_rss_bytes()}};
+                                       nn * static_cast<double>(per_node) +
+                                       static_cast<double>(m.partition.whole_offsets.size() *
+                                                           sizeof(std::uint64_t))},
+                   {"peak_rss_bytes", peak_rss_bytes()},
+                   {"rss_end_bytes", current_rss_bytes()}};
     j["family_build_time_s"] = m.family_build_seconds;
     j["family_build_in_steps"] = step_s > 0 ? m.family_build_seconds / step_s : 0.0;
   }

@@ -7,6 +7,7 @@
 #include "material/force_model.hpp"
 #include "material/impactor.hpp"
 #include "parallel/ghost_layer.hpp"
+#include "parallel/held_rows.hpp"
 #include "parallel/mpi_env.hpp"
 #include "parallel/row_partition.hpp"
 #include "solver/ghost_correction.hpp"
@@ -98,7 +99,7 @@ std::size_t distributed_forces(Model& m, bool allow_breaking, const std::vector<
     for (std::uint32_t i : mine)
       for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k, ++at)
         if (std::bit_cast<std::uint64_t>(bf.state[k]) != std::bit_cast<std::uint64_t>(before[at])) {
-          changed_bonds.push_back(k);
+          changed_bonds.push_back(whole_bond_index(m.partition, bf, i, k));
           changed_states.push_back(bf.state[k]);
         }
   }
@@ -122,8 +123,17 @@ std::size_t distributed_forces(Model& m, bool allow_breaking, const std::vector<
   if (history) {
     const std::vector<std::uint64_t> all_bonds = mpi::all_gather(changed_bonds);
     const std::vector<double> all_states = mpi::all_gather(changed_states);
-    for (std::size_t q = 0; q < all_bonds.size(); ++q) m.bonds.state[all_bonds[q]] = all_states[q];
+    for (std::size_t q = 0; q < all_bonds.size(); ++q) {
+      std::uint64_t k = 0;
+      if (held_bond_index(m.partition, m.bonds, all_bonds[q], k)) m.bonds.state[k] = all_states[q];
+    }
   }
+  // With the partition and region made, a run that asked for it keeps only the rows its passes
+  // read from here on: its own, and for LPS its region's (dilatations, mutual-bond reach).
+  RowPartition& part = m.partition;
+  if (part.hold_rows && !part.rows_held && part.ghost_mode &&
+      part.region_generation == part.generation && can_hold_rows(m.bonds))
+    hold_bond_rows(part, m.bonds, m.formulation.state_based() ? part.region : part.owned);
   // Every rank holds the whole state: each adds the impactors' contact to the shared forces
   // and sums the impactors' reactions over all nodes in the serial run's order.
   if (!m.impactors.empty()) add_impactor_forces(m.impactors, m.nodes, rows, W);
@@ -164,6 +174,18 @@ std::size_t internal_forces_rows(Model& m, bool allow_breaking, const std::vecto
 }
 
 void energy_density(const Model& m, std::vector<double>& W) {
+  const RowPartition& p = m.partition;
+  if (p.rows_held) {
+    // Each owner's rows, to every rank (collective; runs with held rows have no contact or
+    // impactors).
+    W.assign(m.nodes.size(), 0.0);
+    material_energy_density(m.nodes, m.bonds, material_context(m), W, &p.owned);
+    std::vector<double> mine(p.owned.size());
+    for (std::size_t q = 0; q < p.owned.size(); ++q) mine[q] = W[p.owned[q]];
+    const std::vector<double> all = mpi::all_gather(mine);
+    for (std::size_t q = 0; q < p.all_owned.size(); ++q) W[p.all_owned[q]] = all[q];
+    return;
+  }
   material_energy_density(m.nodes, m.bonds, material_context(m), W);
   if (m.contact.enabled) add_contact_energy(m.contact, m.nodes, W);
   if (!m.impactors.empty()) add_impactor_energy(m.impactors, m.nodes, W);

@@ -6,6 +6,7 @@
 #include <type_traits>
 
 #include "parallel/ghost_layer.hpp"
+#include "parallel/held_rows.hpp"
 #include "parallel/mpi_env.hpp"
 #include "solver/internal_forces.hpp"
 
@@ -394,7 +395,7 @@ void VelocityVerlet::compute_accelerations(const std::vector<std::uint32_t>* row
   } else {
     broken_total_ += internal_forces(m_, m_.damage_enabled, log,
                                      want_energy || keep_recent ? &energy_ : nullptr);
-    bond_evals_ += static_cast<double>(m_.bonds.num_bonds());
+    bond_evals_ += static_cast<double>(whole_bond_count(m_.partition, m_.bonds));
   }
   m_.partition.ghost_pass = false;
   // Owned integration: only the region's nodes have their forces here.

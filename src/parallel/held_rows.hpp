@@ -1,0 +1,37 @@
+#pragma once
+// Held bond rows: in a distributed run without refinement events, nothing but a rank's own force
+// passes reads its bond arrays, so each rank keeps the rows those passes read (its own rows; for
+// LPS its region's, whose families give the dilatations and the mutual-bond reach its rows use)
+// and frees the rest, the bulk of a model's memory (16 B per bond against about 270 B per node).
+// The rows keep their contents and order, so a bond is named across ranks by its index in the
+// whole model's arrays (RowPartition::whole_offsets); a checkpoint gathers the rows to rank 0.
+#include <cstdint>
+#include <vector>
+
+#include "core/bond_families.hpp"
+#include "parallel/row_partition.hpp"
+
+namespace periadapt {
+
+// Whether the arrays are of a shape held rows support: contiguous rows, no dual-horizon transpose.
+bool can_hold_rows(const BondFamilies& bf);
+
+// Keeps the rows `keep` (ascending) and empties the others; records the whole model's row begins
+// in `p` (rows_held). The rows must be contiguous (can_hold_rows).
+void hold_bond_rows(RowPartition& p, BondFamilies& bf, const std::vector<std::uint32_t>& keep);
+
+// The whole model's index of bond k of row i, and back: false when this rank holds no such bond.
+// Identities while the rows are whole.
+std::uint64_t whole_bond_index(const RowPartition& p, const BondFamilies& bf, std::uint32_t i,
+                               std::uint64_t k);
+bool held_bond_index(const RowPartition& p, const BondFamilies& bf, std::uint64_t whole,
+                     std::uint64_t& k);
+
+// The bond count of the whole model (what a serial run reports).
+std::uint64_t whole_bond_count(const RowPartition& p, const BondFamilies& bf);
+
+// Every owner's rows assembled into the whole model's arrays on rank 0, as a serial run holds
+// them (the room included); the other ranks get empty families (collective).
+BondFamilies gather_whole_bonds(const RowPartition& p, const BondFamilies& bf);
+
+}  // namespace periadapt
