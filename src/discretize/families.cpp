@@ -210,7 +210,28 @@ std::vector<std::vector<QuadratureEntry>> quadrature_factors(
   return out;
 }
 
-BondFamilies build_families(const NodeSet& nodes, const QuadratureSpec& quad, double headroom) {
+namespace {
+
+bool searched(const NodeSet& nodes, const std::vector<char>* rows, std::size_t i) {
+  return (nodes.flags[i] & kActive) && (!rows || (*rows)[i]);
+}
+
+// Row begins from the count pass over the searched rows.
+std::vector<std::uint64_t> counted_offsets(const NodeSet& nodes, const FamilySearch& search,
+                                           const std::vector<char>* rows) {
+  const std::size_t n = nodes.size();
+  std::vector<std::uint64_t> offsets(n + 1, 0);
+#pragma omp parallel for schedule(dynamic, 256)
+  for (std::size_t i = 0; i < n; ++i)
+    if (searched(nodes, rows, i)) offsets[i + 1] = search.count(i);
+  for (std::size_t i = 0; i < n; ++i) offsets[i + 1] += offsets[i];
+  return offsets;
+}
+
+}  // namespace
+
+BondFamilies build_families(const NodeSet& nodes, const QuadratureSpec& quad, double headroom,
+                            const std::vector<char>* rows) {
   const std::size_t n = nodes.size();
   BondFamilies fam;
   fam.offsets.assign(n + 1, 0);
@@ -218,20 +239,23 @@ BondFamilies build_families(const NodeSet& nodes, const QuadratureSpec& quad, do
   const FamilySearch search(nodes, quad);
   // Two passes (count, then fill in place) so that the only bond-sized memory ever allocated is
   // the final CSR arrays: no per-thread buffers, no copy.
-#pragma omp parallel for schedule(dynamic, 256)
-  for (std::size_t i = 0; i < n; ++i)
-    if (nodes.flags[i] & kActive) fam.offsets[i + 1] = search.count(i);
-  for (std::size_t i = 0; i < n; ++i) fam.offsets[i + 1] += fam.offsets[i];
+  fam.offsets = counted_offsets(nodes, search, rows);
   grow_bond_arrays(fam, fam.offsets[n], headroom);
 #pragma omp parallel
   {
     std::vector<Entry> scratch;
 #pragma omp for schedule(dynamic, 256)
     for (std::size_t i = 0; i < n; ++i)
-      if (nodes.flags[i] & kActive) search.write(i, fam.offsets[i], fam, scratch);
+      if (searched(nodes, rows, i)) search.write(i, fam.offsets[i], fam, scratch);
   }
   fam.close_contiguous();
   return fam;
+}
+
+std::vector<std::uint64_t> family_offsets(const NodeSet& nodes, const QuadratureSpec& quad,
+                                          const std::vector<char>* rows) {
+  if (nodes.size() == 0) return {0};
+  return counted_offsets(nodes, FamilySearch(nodes, quad), rows);
 }
 
 void rebuild_rows(BondFamilies& fam, const NodeSet& nodes, const QuadratureSpec& quad,

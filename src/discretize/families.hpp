@@ -20,8 +20,14 @@ inline constexpr double kRefinementBondHeadroom = 0.25;
 // The families of every active node, rows contiguous in node order. `headroom`: spare capacity
 // (a fraction of the bonds) reserved for rows that refinement will append; it is address space
 // only until used (pages untouched), so it costs no resident memory.
+// `rows` (optional): only the flagged nodes' rows are searched; the others stay empty.
 BondFamilies build_families(const NodeSet& nodes, const QuadratureSpec& quadrature,
-                            double headroom = 0.0);
+                            double headroom = 0.0, const std::vector<char>* rows = nullptr);
+
+// The row begins build_families would give (its count pass; `rows` as there), with no bond
+// stored: what splitting the rows over ranks by their work needs before any rank searches them.
+std::vector<std::uint64_t> family_offsets(const NodeSet& nodes, const QuadratureSpec& quadrature,
+                                          const std::vector<char>* rows = nullptr);
 
 // Searches again the rows of the flagged nodes (and gives nodes appended since the last build
 // empty rows first): each such row is written after the current arrays, whose old entries turn

@@ -73,6 +73,65 @@ bool held_bond_index(const RowPartition& p, const BondFamilies& bf, std::uint64_
   return true;
 }
 
+BondFamilies build_held_families(RowPartition& p, const NodeSet& ns, const QuadratureSpec& q,
+                                 bool region) {
+  const std::size_t n = ns.size();
+  // The rows' sizes alone (offsets, no bond arrays) are what the split weighs: each rank
+  // counts a slice of the ids, and every rank gets every count.
+  const auto P = static_cast<std::size_t>(mpi::size()), r = static_cast<std::size_t>(mpi::rank());
+  const std::size_t lo = n * r / P, hi = n * (r + 1) / P;
+  std::vector<char> slice(n, 0);
+  std::fill(slice.begin() + static_cast<std::ptrdiff_t>(lo), slice.begin() + static_cast<std::ptrdiff_t>(hi), 1);
+  const std::vector<std::uint64_t> counted = family_offsets(ns, q, &slice);
+  std::vector<std::uint64_t> mine(hi - lo);
+  for (std::size_t i = lo; i < hi; ++i) mine[i - lo] = counted[i + 1] - counted[i];
+  const std::vector<std::uint64_t> all = mpi::all_gather(mine);  // in id order
+  BondFamilies sizes;
+  sizes.offsets.assign(n + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) sizes.offsets[i + 1] = sizes.offsets[i] + all[i];
+  sizes.close_contiguous();
+  p.active = true;
+  refresh_partition(p, ns, sizes);
+  std::vector<char> keep(p.mine.begin(), p.mine.end());
+  BondFamilies bf = build_families(ns, q, 0.0, &keep);
+  // LPS: the rows around its own (dilatations) and around those (the mutual-bond reach).
+  for (int layer = 0; region && layer < 2; ++layer) {
+    std::vector<char> grown(keep);
+    for (std::size_t i = 0; i < n; ++i)
+      if (keep[i])
+        for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) grown[bf.neighbor[k]] = 1;
+    keep = std::move(grown);
+    bf = BondFamilies{};
+    bf = build_families(ns, q, 0.0, &keep);
+  }
+  std::size_t held = 0;
+  for (char c : keep) held += c != 0;
+  p.whole_offsets = std::move(sizes.offsets);
+  p.whole_capacity = p.whole_offsets.back();  // a serial build without refinement room
+  p.rows_held = true;
+  p.held_row_count = held;
+  p.bonds = bf.neighbor.size();
+  return bf;
+}
+
+void share_held_setup(const RowPartition& p, NodeSet& ns, const BondFamilies& bf,
+                      std::size_t& precrack_bonds) {
+  std::vector<double> mine;
+  mine.reserve(2 * p.owned.size());
+  double cut = 0;
+  for (std::uint32_t i : p.owned) {
+    mine.push_back(ns.family_weight[i]);
+    mine.push_back(ns.broken_weight[i]);
+    for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) cut += bf.beta[k] < 0.0f;
+  }
+  const std::vector<double> all = mpi::all_gather(mine);
+  for (std::size_t q = 0; q < p.all_owned.size(); ++q) {
+    ns.family_weight[p.all_owned[q]] = all[2 * q];
+    ns.broken_weight[p.all_owned[q]] = all[2 * q + 1];
+  }
+  precrack_bonds = static_cast<std::size_t>(mpi::sum_real(cut));
+}
+
 std::uint64_t whole_bond_count(const RowPartition& p, const BondFamilies& bf) {
   return p.rows_held ? p.whole_offsets.back() : bf.num_bonds();
 }

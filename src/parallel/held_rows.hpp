@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "core/bond_families.hpp"
+#include "core/node_set.hpp"
+#include "discretize/families.hpp"
 #include "parallel/row_partition.hpp"
 
 namespace periadapt {
@@ -26,6 +28,18 @@ std::uint64_t whole_bond_index(const RowPartition& p, const BondFamilies& bf, st
                                std::uint64_t k);
 bool held_bond_index(const RowPartition& p, const BondFamilies& bf, std::uint64_t whole,
                      std::uint64_t& k);
+
+// A run that holds its rows from the start (no rank ever holds the whole arrays): splits the
+// rows over the ranks by their sizes (the family search's count pass, storing no bond), then
+// searches only this rank's rows and, with `region` (LPS), the rows within two families of them.
+// Fills `p` (active, owners, rows_held); collective.
+BondFamilies build_held_families(RowPartition& p, const NodeSet& ns, const QuadratureSpec& q,
+                                 bool region);
+
+// After the set-up's per-row passes over held rows: every rank takes each row's damage weights
+// from its owner, and the pre-crack count is the sum of the owners' cut entries (collective).
+void share_held_setup(const RowPartition& p, NodeSet& ns, const BondFamilies& bf,
+                      std::size_t& precrack_bonds);
 
 // The bond count of the whole model (what a serial run reports).
 std::uint64_t whole_bond_count(const RowPartition& p, const BondFamilies& bf);

@@ -51,6 +51,18 @@ void remove_earlier_run_outputs(const std::string& dir) {
   }
 }
 
+// A distributed explicit run whose ranks hold their own bond rows from the set-up on
+// (parallel/held_rows.hpp): owned integration, and nothing that reads another rank's rows
+// (refinement events, multi-rate classes, dual-horizon memberships, contact, impactors, the
+// overlay) or corrects surfaces over the whole model at set-up. A restart reads the whole
+// checkpoint and keeps its rows from its first pass on.
+bool holds_rows_from_setup(const Deck& dk, const RunOptions& opt) {
+  return mpi::distributed() && dk.owned_integration && !dk.adapt.enabled &&
+         !dk.adapt.ghost_correction && !dk.multirate && !dk.dual_horizon && !dk.contact.enabled &&
+         dk.impactors.empty() && !dk.pdro.enabled &&
+         dk.surface_correction == SurfaceCorrection::None && !opt.restart;
+}
+
 }  // namespace
 
 TimeStepChoice choose_time_step(const Deck& dk, const Model& m) {
@@ -118,13 +130,23 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
   const auto t_start = clock::now();
   RunResult res;
   Model& m = res.model;
-  m = build_model(dk);
-  const double t_setup = std::chrono::duration<double>(clock::now() - t_start).count();
-  const TimeStepChoice ts = choose_time_step(dk, m);
-  const NodeSet& ns = m.nodes;
+  if (holds_rows_from_setup(dk, opt)) {
+    const bool region = Formulation::named(dk.formulation, false)->state_based();
+    m = build_model(dk, [&](const NodeSet& ns, const QuadratureSpec& q, RowPartition& p) {
+      p.method = dk.partition;
+      p.rebalance_threshold = dk.rebalance_threshold;
+      return build_held_families(p, ns, q, region);
+    });
+    share_held_setup(m.partition, m.nodes, m.bonds, m.precrack_bonds);
+  } else {
+    m = build_model(dk);
+  }
   if (mpi::distributed()) {
     enable_distributed_forces(dk, m);
   }
+  const double t_setup = std::chrono::duration<double>(clock::now() - t_start).count();
+  const TimeStepChoice ts = choose_time_step(dk, m);
+  const NodeSet& ns = m.nodes;
 
   const std::string dir = opt.out_dir ? *opt.out_dir : dk.output.directory;
   if (opt.write_files) std::filesystem::create_directories(dir);

@@ -73,7 +73,7 @@ void assign_blocks(const Deck& dk, Model& m, double tol) {
 
 }  // namespace
 
-Model build_model(const Deck& dk) {
+Model build_model(const Deck& dk, const FamilyBuild& families) {
   Model m;
   NodeSet& ns = m.nodes;
   ns.dim = dk.dim;
@@ -149,7 +149,8 @@ Model build_model(const Deck& dk) {
   const auto t0 = std::chrono::steady_clock::now();
   // An adaptive run appends refined rows: spare capacity now saves its first event a copy of
   // every bond.
-  m.bonds = build_families(ns, qs, dk.adapt.enabled ? kRefinementBondHeadroom : 0.0);
+  m.bonds = families ? families(ns, qs, m.partition)
+                     : build_families(ns, qs, dk.adapt.enabled ? kRefinementBondHeadroom : 0.0);
   if (m.formulation.keeps_bond_history()) m.bonds.enable_state();
   m.family_build_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

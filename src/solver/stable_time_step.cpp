@@ -6,6 +6,7 @@
 
 #include "material/contact.hpp"
 #include "material/impactor.hpp"
+#include "parallel/mpi_env.hpp"
 
 namespace periadapt {
 
@@ -26,11 +27,21 @@ std::vector<double> stiffness_sums(const Model& model) {
 
 StableStep smallest_step(const Model& model, const std::vector<double>* scale) {
   const std::vector<double> K = stiffness_sums(model);
+  // Ranks holding their own bond rows (parallel/held_rows.hpp) bound their own rows; the
+  // smallest over the ranks, the lowest node on a tie, is the serial run's.
+  const RowPartition& p = model.partition;
   StableStep best{std::numeric_limits<double>::infinity(), 0};
   for (std::size_t i = 0; i < K.size(); ++i) {
-    if (!(model.nodes.flags[i] & kActive) || K[i] <= 0) continue;
+    if (!(model.nodes.flags[i] & kActive) || K[i] <= 0 || (p.rows_held && !p.mine[i])) continue;
     const double dt = std::sqrt(2.0 * model.nodes.density[i] / K[i]) * (scale ? (*scale)[i] : 1.0);
     if (dt < best.dt) best = {dt, i};
+  }
+  if (!p.rows_held) return best;
+  const std::vector<double> all =
+      mpi::all_gather(std::vector<double>{best.dt, static_cast<double>(best.node)});
+  for (std::size_t r = 0; r + 1 < all.size(); r += 2) {
+    const auto node = static_cast<std::size_t>(all[r + 1]);
+    if (all[r] < best.dt || (all[r] == best.dt && node < best.node)) best = {all[r], node};
   }
   return best;
 }
