@@ -178,6 +178,11 @@ timeout 120 mpirun -np 2 "$bin" run "$first_deck" --out /proc/periadapt-no-folde
   --threads 1 --set solver.end_time=1e-6 > "$tmp/outfail.log" 2>&1; rc=$?
 if [[ $rc -eq 4 ]]; then echo "ok   an output failure on rank 0 stops all ranks (exit 4)"
 else echo "FAIL output failure under mpirun: exit $rc: $(head -3 "$tmp/outfail.log")"; fail=1; fi
+# A command rank 0 runs alone (a sweep) finishes without waiting for the ranks that left.
+timeout 120 mpirun -np 2 "$bin" sweep "$first_deck" --set solver.end_time=2e-6,3e-6 --out "$tmp/sweep" \
+  --quiet --threads 1 > "$tmp/sweep.log" 2>&1; rc=$?
+if [[ $rc -eq 0 && $(wc -l < "$tmp/sweep/sweep.csv") -eq 3 ]]; then echo "ok   a sweep under mpirun runs on rank 0 alone"
+else echo "FAIL sweep under mpirun: exit $rc: $(tail -2 "$tmp/sweep.log")"; fail=1; fi
 # A diverging run stops every rank at the step and node the serial run reports (exit 3): the
 # lowest offending node over the ranks' regions.
 unstable=(--quiet --threads 1 --set solver.time_step=4e-7 --set solver.allow_unstable_time_step=true

@@ -302,6 +302,7 @@ int main(int argc, char** argv) {
   std::string run_dir;
   if (mpi::distributed() && !run->parsed()) {
     if (mpi::rank() > 0) return 0;
+    mpi::continue_alone();
     fmt::print(stderr, "note: only `run` is distributed; rank 0 does this alone\n");
   }
   try {

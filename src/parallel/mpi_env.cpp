@@ -78,6 +78,8 @@ bool built_with_mpi() {
 int rank() { return g_rank; }
 int size() { return g_active ? g_size : 1; }
 
+void continue_alone() { g_active = false; }
+
 void abort(int code) {
 #ifdef PERIADAPT_HAVE_MPI
   if (g_active) MPI_Abort(MPI_COMM_WORLD, code);

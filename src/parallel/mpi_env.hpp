@@ -23,6 +23,10 @@ int rank();
 int size();
 inline bool distributed() { return size() > 1; }
 
+// The other ranks have left (a command that rank 0 runs alone): from here on this process is a
+// world of one, so no collective waits for them.
+void continue_alone();
+
 // Ends every rank with exit code `code` (an error one rank met alone).
 [[noreturn]] void abort(int code);
 
