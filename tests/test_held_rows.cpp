@@ -1,6 +1,6 @@
 // Held bond rows (parallel/held_rows.hpp): a rank's kept rows are the whole model's rows, entry
-// for entry, under the index map the ranks exchange bonds by; rows it does not hold name no bond
-// of its own; the owners' rows reassemble the whole arrays a serial run holds.
+// for entry, under the bond names the ranks exchange; a name in a row it does not hold names no
+// bond of its own; the owners' rows reassemble the whole arrays a serial run holds.
 #include <gtest/gtest.h>
 
 #include "input/deck_builder.hpp"
@@ -28,7 +28,7 @@ Model plate() {
 }
 }  // namespace
 
-TEST(HeldRows, KeptRowsAreTheWholeRowsUnderTheIndexMap) {
+TEST(HeldRows, KeptRowsAreTheWholeRowsUnderTheBondNames) {
   Model m = plate();
   const BondFamilies whole = m.bonds;
   ASSERT_TRUE(can_hold_rows(whole));
@@ -46,9 +46,9 @@ TEST(HeldRows, KeptRowsAreTheWholeRowsUnderTheIndexMap) {
     ASSERT_EQ(h.end(i) - h.begin(i), held ? whole.end(i) - whole.begin(i) : 0u) << "row " << i;
     for (std::uint64_t g = whole.begin(i); g < whole.end(i); ++g) {
       std::uint64_t k = 0;
-      ASSERT_EQ(held_bond_index(p, h, g, k), held) << "whole bond " << g;
+      ASSERT_EQ(h.named(whole.name(i, g), k), held) << "whole bond " << g;
       if (!held) continue;
-      EXPECT_EQ(whole_bond_index(p, h, i, k), g);
+      EXPECT_EQ(h.name(i, k), whole.name(i, g));
       EXPECT_EQ(h.neighbor[k], whole.neighbor[g]);
       EXPECT_EQ(h.inv_length[k], whole.inv_length[g]);
       EXPECT_EQ(h.beta[k], whole.beta[g]);

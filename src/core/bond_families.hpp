@@ -62,6 +62,19 @@ struct BondFamilies {
   std::size_t row_index_bytes_per_node() const { return ends.empty() ? 8 : 16; }
   // Bytes held per bond in the arrays, unused slack included (for memory reports).
   std::size_t bond_array_bytes() const { return neighbor.size() * bytes_per_bond(); }
+  // A bond's name in every copy of the families that holds its row (ranks holding other rows,
+  // arrays whose rows sit elsewhere): its row and its place in the row.
+  std::uint64_t name(std::uint32_t i, std::uint64_t k) const {
+    return (std::uint64_t{i} << 32) | (k - begin(i));
+  }
+  // The bond a name gives here; false when this copy holds no such bond (an empty row).
+  bool named(std::uint64_t name, std::uint64_t& k) const {
+    const auto i = static_cast<std::size_t>(name >> 32);
+    const std::uint64_t at = name & 0xffffffffu;
+    if (i >= num_nodes() || at >= end(i) - begin(i)) return false;
+    k = begin(i) + at;
+    return true;
+  }
   static bool intact(float b) { return b > 0.0f; }
   double length(std::size_t k) const { return 1.0 / std::abs(inv_length[k]); }
   bool breakable(std::size_t k) const { return inv_length[k] > 0.0; }

@@ -55,24 +55,6 @@ void hold_bond_rows(RowPartition& p, BondFamilies& bf, const std::vector<std::ui
   p.bonds = bf.neighbor.size();
 }
 
-std::uint64_t whole_bond_index(const RowPartition& p, const BondFamilies& bf, std::uint32_t i,
-                               std::uint64_t k) {
-  return p.rows_held ? p.whole_offsets[i] + (k - bf.begin(i)) : k;
-}
-
-bool held_bond_index(const RowPartition& p, const BondFamilies& bf, std::uint64_t whole,
-                     std::uint64_t& k) {
-  if (!p.rows_held) {
-    k = whole;
-    return true;
-  }
-  const auto it = std::upper_bound(p.whole_offsets.begin(), p.whole_offsets.end(), whole);
-  const auto i = static_cast<std::size_t>(it - p.whole_offsets.begin()) - 1;
-  if (bf.end(i) == bf.begin(i)) return false;  // a row this rank does not hold
-  k = bf.begin(i) + (whole - p.whole_offsets[i]);
-  return true;
-}
-
 BondFamilies build_held_families(RowPartition& p, const NodeSet& ns, const QuadratureSpec& q,
                                  bool region) {
   const std::size_t n = ns.size();

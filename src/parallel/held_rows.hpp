@@ -3,8 +3,9 @@
 // passes reads its bond arrays, so each rank keeps the rows those passes read (its own rows; for
 // LPS its region's, whose families give the dilatations and the mutual-bond reach its rows use)
 // and frees the rest, the bulk of a model's memory (16 B per bond against about 270 B per node).
-// The rows keep their contents and order, so a bond is named across ranks by its index in the
-// whole model's arrays (RowPartition::whole_offsets); a checkpoint gathers the rows to rank 0.
+// The rows keep their contents and order, so a bond's name (BondFamilies::name: its row and its
+// place there) is the same on every rank that holds its row; a checkpoint gathers the rows to
+// rank 0 into the whole model's arrays (RowPartition::whole_offsets).
 #include <cstdint>
 #include <vector>
 
@@ -21,13 +22,6 @@ bool can_hold_rows(const BondFamilies& bf);
 // Keeps the rows `keep` (ascending) and empties the others; records the whole model's row begins
 // in `p` (rows_held). The rows must be contiguous (can_hold_rows).
 void hold_bond_rows(RowPartition& p, BondFamilies& bf, const std::vector<std::uint32_t>& keep);
-
-// The whole model's index of bond k of row i, and back: false when this rank holds no such bond.
-// Identities while the rows are whole.
-std::uint64_t whole_bond_index(const RowPartition& p, const BondFamilies& bf, std::uint32_t i,
-                               std::uint64_t k);
-bool held_bond_index(const RowPartition& p, const BondFamilies& bf, std::uint64_t whole,
-                     std::uint64_t& k);
 
 // A run that holds its rows from the start (no rank ever holds the whole arrays): splits the
 // rows over the ranks by their sizes (the family search's count pass, storing no bond), then

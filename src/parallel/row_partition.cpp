@@ -6,7 +6,6 @@
 #include <stdexcept>
 
 #include "parallel/ghost_layer.hpp"
-#include "parallel/held_rows.hpp"
 #include "parallel/mpi_env.hpp"
 
 #ifdef PERIADAPT_HAVE_MPI
@@ -305,12 +304,13 @@ std::size_t share_force_pass(const RowPartition& p, NodeSet& ns, BondFamilies& b
   hit.erase(std::unique(hit.begin(), hit.end()), hit.end());
   std::vector<double> hit_weight;
   for (std::uint32_t i : hit) hit_weight.push_back(ns.broken_weight[i]);
-  // Bonds travel by their index in the whole model's arrays (held rows: parallel/held_rows.hpp).
-  std::vector<std::uint64_t> whole_here(broken_here.size());
+  // Bonds travel by name (row and place), which ranks holding other rows read alike
+  // (parallel/held_rows.hpp).
+  std::vector<std::uint64_t> names_here(broken_here.size());
   for (std::size_t q = 0; q < broken_here.size(); ++q)
-    whole_here[q] = whole_bond_index(p, bf, row_of_here[q], broken_here[q]);
+    names_here[q] = bf.name(row_of_here[q], broken_here[q]);
   std::vector<int> counts;
-  std::vector<std::uint64_t> broken = mpi::all_gather(whole_here, &counts);
+  std::vector<std::uint64_t> broken = mpi::all_gather(names_here, &counts);
   std::vector<int> hit_counts;
   const std::vector<std::uint32_t> all_hit = mpi::all_gather(hit, &hit_counts);
   const std::vector<double> all_hit_weight = mpi::all_gather(hit_weight);
@@ -322,8 +322,8 @@ std::size_t share_force_pass(const RowPartition& p, NodeSet& ns, BondFamilies& b
     const bool mine = r == mpi::rank();
     for (std::size_t q = at; q < end; ++q) {
       // The log names this rank's copies; a bond in a row it does not hold leaves it.
-      std::uint64_t k = broken[q];
-      const bool held = held_bond_index(p, bf, broken[q], k);
+      std::uint64_t k = 0;
+      const bool held = bf.named(broken[q], k);
       if (!mine && held) bf.beta[k] = -bf.beta[k];
       broken[q] = held ? k : kNotHeld;
     }

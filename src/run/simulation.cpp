@@ -188,7 +188,13 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
   if (m.partition.active && dk.owned_integration) vv.enable_owned_integration();
   if (!restart) vv.initialize();
   std::unique_ptr<Adaptor> adaptor;
-  if (dk.adapt.enabled) adaptor = std::make_unique<Adaptor>(m, vv, dk.adapt);
+  if (dk.adapt.enabled) {
+    adaptor = std::make_unique<Adaptor>(m, vv, dk.adapt);
+  } else {
+    // The energy trigger is the only reader of multi-rate's recent densities: without it no pass
+    // writes them (and owned integration need not run the steps before a check whole).
+    vv.keep_energies_for_checks(0);
+  }
   // Without refinement events (or multi-rate classes, whose idle rows' energies every rank
   // evaluates) only each rank's own passes read its bond rows: it keeps those alone.
   m.partition.hold_rows = vv.owned_integration() && !adaptor && !dk.multirate;

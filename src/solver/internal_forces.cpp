@@ -99,7 +99,7 @@ std::size_t distributed_forces(Model& m, bool allow_breaking, const std::vector<
     for (std::uint32_t i : mine)
       for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k, ++at)
         if (std::bit_cast<std::uint64_t>(bf.state[k]) != std::bit_cast<std::uint64_t>(before[at])) {
-          changed_bonds.push_back(whole_bond_index(m.partition, bf, i, k));
+          changed_bonds.push_back(bf.name(i, k));
           changed_states.push_back(bf.state[k]);
         }
   }
@@ -125,7 +125,7 @@ std::size_t distributed_forces(Model& m, bool allow_breaking, const std::vector<
     const std::vector<double> all_states = mpi::all_gather(changed_states);
     for (std::size_t q = 0; q < all_bonds.size(); ++q) {
       std::uint64_t k = 0;
-      if (held_bond_index(m.partition, m.bonds, all_bonds[q], k)) m.bonds.state[k] = all_states[q];
+      if (m.bonds.named(all_bonds[q], k)) m.bonds.state[k] = all_states[q];
     }
   }
   // With the partition and region made, a run that asked for it keeps only the rows its passes
