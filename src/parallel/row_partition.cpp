@@ -283,11 +283,17 @@ std::size_t share_force_pass(const RowPartition& p, NodeSet& ns, BondFamilies& b
   } else {
     share_all_rows(p, ns, rows, full, with_w ? W : nullptr, with_s ? stretch : nullptr);
   }
-  // Each broken bond with its row (rows are not stored in id order once events moved some).
-  std::vector<std::uint64_t> sorted_here(broken_here);
-  std::sort(sorted_here.begin(), sorted_here.end());
+  // Each broken bond with its row: while the rows lie in id order, the last row that begins at
+  // or before it; once events moved some, by matching the rows' ranges against the sorted bonds.
   std::vector<std::uint32_t> row_of_here(broken_here.size());
-  if (!sorted_here.empty()) {
+  const std::vector<std::uint64_t>& begins = bf.offsets;
+  if (bf.ends.empty()) {
+    for (std::size_t q = 0; q < broken_here.size(); ++q)
+      row_of_here[q] = static_cast<std::uint32_t>(
+          std::upper_bound(begins.begin(), begins.end(), broken_here[q]) - begins.begin() - 1);
+  } else if (!broken_here.empty()) {
+    std::vector<std::uint64_t> sorted_here(broken_here);
+    std::sort(sorted_here.begin(), sorted_here.end());
     std::vector<std::uint32_t> row_sorted(sorted_here.size());
     for (std::uint32_t i : rows) {
       const auto lo = std::lower_bound(sorted_here.begin(), sorted_here.end(), bf.begin(i));
