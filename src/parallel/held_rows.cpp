@@ -96,21 +96,34 @@ BondFamilies build_held_families(RowPartition& p, const NodeSet& ns, const Quadr
   return bf;
 }
 
+void share_owned_values(const RowPartition& p, std::vector<double>& v,
+                        const std::vector<std::uint32_t>* rows) {
+  if (!rows) {
+    std::vector<double> mine(p.owned.size());
+    for (std::size_t q = 0; q < p.owned.size(); ++q) mine[q] = v[p.owned[q]];
+    const std::vector<double> all = mpi::all_gather(mine);
+    for (std::size_t q = 0; q < p.all_owned.size(); ++q) v[p.all_owned[q]] = all[q];
+    return;
+  }
+  // The listed rows grouped by owner, in list order: what each rank sends, in rank order.
+  std::vector<std::vector<std::uint32_t>> by_rank(static_cast<std::size_t>(mpi::size()));
+  for (std::uint32_t i : *rows) by_rank[static_cast<std::size_t>(p.owner[i])].push_back(i);
+  const std::vector<std::uint32_t>& own = by_rank[static_cast<std::size_t>(mpi::rank())];
+  std::vector<double> mine(own.size());
+  for (std::size_t q = 0; q < own.size(); ++q) mine[q] = v[own[q]];
+  const std::vector<double> all = mpi::all_gather(mine);
+  std::size_t at = 0;
+  for (const auto& list : by_rank)
+    for (std::uint32_t i : list) v[i] = all[at++];
+}
+
 void share_held_setup(const RowPartition& p, NodeSet& ns, const BondFamilies& bf,
                       std::size_t& precrack_bonds) {
-  std::vector<double> mine;
-  mine.reserve(2 * p.owned.size());
   double cut = 0;
-  for (std::uint32_t i : p.owned) {
-    mine.push_back(ns.family_weight[i]);
-    mine.push_back(ns.broken_weight[i]);
+  for (std::uint32_t i : p.owned)
     for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) cut += bf.beta[k] < 0.0f;
-  }
-  const std::vector<double> all = mpi::all_gather(mine);
-  for (std::size_t q = 0; q < p.all_owned.size(); ++q) {
-    ns.family_weight[p.all_owned[q]] = all[2 * q];
-    ns.broken_weight[p.all_owned[q]] = all[2 * q + 1];
-  }
+  share_owned_values(p, ns.family_weight);
+  share_owned_values(p, ns.broken_weight);
   precrack_bonds = static_cast<std::size_t>(mpi::sum_real(cut));
 }
 

@@ -35,6 +35,17 @@ BondFamilies build_held_families(RowPartition& p, const NodeSet& ns, const Quadr
 void share_held_setup(const RowPartition& p, NodeSet& ns, const BondFamilies& bf,
                       std::size_t& precrack_bonds);
 
+// Each owner's values of its rows to every rank (collective): `v` (one value per node) holds
+// this rank's own rows' values and leaves with every row's; with `rows` (the same list on every
+// rank), those rows' only.
+void share_owned_values(const RowPartition& p, std::vector<double>& v,
+                        const std::vector<std::uint32_t>* rows = nullptr);
+
+// Row i's bond count in the whole model.
+inline std::uint64_t whole_row_length(const RowPartition& p, const BondFamilies& bf, std::size_t i) {
+  return p.rows_held ? p.whole_offsets[i + 1] - p.whole_offsets[i] : bf.end(i) - bf.begin(i);
+}
+
 // The bond count of the whole model (what a serial run reports).
 std::uint64_t whole_bond_count(const RowPartition& p, const BondFamilies& bf);
 

@@ -53,12 +53,12 @@ void remove_earlier_run_outputs(const std::string& dir) {
 
 // A distributed explicit run whose ranks hold their own bond rows from the set-up on
 // (parallel/held_rows.hpp): owned integration, and nothing that reads another rank's rows
-// (refinement events, multi-rate classes, dual-horizon memberships, contact, impactors, the
-// overlay) or corrects surfaces over the whole model at set-up. A restart reads the whole
-// checkpoint and keeps its rows from its first pass on.
+// (refinement events, dual-horizon memberships, contact, impactors, the overlay) or corrects
+// surfaces over the whole model at set-up. A restart reads the whole checkpoint and keeps its
+// rows from its first pass on.
 bool holds_rows_from_setup(const Deck& dk, const RunOptions& opt) {
   return mpi::distributed() && dk.owned_integration && !dk.adapt.enabled &&
-         !dk.adapt.ghost_correction && !dk.multirate && !dk.dual_horizon && !dk.contact.enabled &&
+         !dk.adapt.ghost_correction && !dk.dual_horizon && !dk.contact.enabled &&
          dk.impactors.empty() && !dk.pdro.enabled &&
          dk.surface_correction == SurfaceCorrection::None && !opt.restart;
 }
@@ -195,9 +195,8 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
     // writes them (and owned integration need not run the steps before a check whole).
     vv.keep_energies_for_checks(0);
   }
-  // Without refinement events (or multi-rate classes, whose idle rows' energies every rank
-  // evaluates) only each rank's own passes read its bond rows: it keeps those alone.
-  m.partition.hold_rows = vv.owned_integration() && !adaptor && !dk.multirate;
+  // Without refinement events only each rank's own passes read its bond rows: it keeps those.
+  m.partition.hold_rows = vv.owned_integration() && !adaptor;
 
   RunView view(dk, m, vv, adaptor.get(), dir, opt.write_files, ts.steps, t_start);
   // Observers, in the order they see each step: the tip before the history row that shows it;

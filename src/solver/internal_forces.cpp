@@ -180,15 +180,24 @@ void energy_density(const Model& m, std::vector<double>& W) {
     // impactors).
     W.assign(m.nodes.size(), 0.0);
     material_energy_density(m.nodes, m.bonds, material_context(m), W, &p.owned);
-    std::vector<double> mine(p.owned.size());
-    for (std::size_t q = 0; q < p.owned.size(); ++q) mine[q] = W[p.owned[q]];
-    const std::vector<double> all = mpi::all_gather(mine);
-    for (std::size_t q = 0; q < p.all_owned.size(); ++q) W[p.all_owned[q]] = all[q];
+    share_owned_values(p, W);
     return;
   }
   material_energy_density(m.nodes, m.bonds, material_context(m), W);
   if (m.contact.enabled) add_contact_energy(m.contact, m.nodes, W);
   if (!m.impactors.empty()) add_impactor_energy(m.impactors, m.nodes, W);
+}
+
+void energy_density_rows(const Model& m, std::vector<double>& W,
+                         const std::vector<std::uint32_t>& rows) {
+  const RowPartition& p = m.partition;
+  if (!p.rows_held) {
+    material_energy_density(m.nodes, m.bonds, material_context(m), W, &rows);
+    return;
+  }
+  const std::vector<std::uint32_t> mine = owned_rows(p, &rows);
+  material_energy_density(m.nodes, m.bonds, material_context(m), W, &mine);
+  share_owned_values(p, W, &rows);
 }
 
 // Contact forces are not in the stress: they act between nodes that the bonds do not join.

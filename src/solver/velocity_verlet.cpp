@@ -274,6 +274,8 @@ void VelocityVerlet::classify_rates(const std::vector<std::uint32_t>* rows) {
   } else {
     std::vector<double> K;
     material_stiffness_sum(ns, m_.bonds, material_context(m_), K);
+    // Held bond rows: each row's sum from its owner.
+    if (m_.partition.rows_held) share_owned_values(m_.partition, K);
     for (std::size_t i = 0; i < ns.size(); ++i) sort_node(i, K[i]);
   }
   std::sort(pending_.begin(), pending_.end());
@@ -288,7 +290,7 @@ void VelocityVerlet::rebuild_rate_rows() {
   for (std::size_t i = 0; i < ns.size(); ++i) {
     if (ns.flags[i] & kActive) {
       class_rows_[rate_[i]].push_back(static_cast<std::uint32_t>(i));
-      class_bonds_[rate_[i]] += static_cast<double>(m_.bonds.end(i) - m_.bonds.begin(i));
+      class_bonds_[rate_[i]] += static_cast<double>(whole_row_length(m_.partition, m_.bonds, i));
     } else {
       rate_[i] = 1;  // a node that comes back (coarsening) starts on dt
     }
@@ -373,7 +375,7 @@ void VelocityVerlet::compute_accelerations(const std::vector<std::uint32_t>* row
   const bool energy_kept = partial && want_energy && (subcycle || energy_step_ == step_);
   if (subcycle && want_energy) {
     gather_rows(step_, false, idle_rows_);
-    material_energy_density(ns, m_.bonds, material_context(m_), energy_, &idle_rows_);
+    energy_density_rows(m_, energy_, idle_rows_);
   }
   energy_step_ = want_energy && (!partial || energy_kept) ? step_ : -1;
   energy_owned_only_ = ghost_step_;
@@ -391,7 +393,7 @@ void VelocityVerlet::compute_accelerations(const std::vector<std::uint32_t>* row
     if (rows == &pass_rows_)
       bond_evals_ += pass_bonds_;  // counted per rate class when the classes were formed
     else
-      for (std::uint32_t i : *rows) bond_evals_ += static_cast<double>(m_.bonds.end(i) - m_.bonds.begin(i));
+      for (std::uint32_t i : *rows) bond_evals_ += static_cast<double>(whole_row_length(m_.partition, m_.bonds, i));
   } else {
     broken_total_ += internal_forces(m_, m_.damage_enabled, log,
                                      want_energy || keep_recent ? &energy_ : nullptr);
