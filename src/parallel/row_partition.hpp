@@ -56,9 +56,10 @@ struct RowPartition {
   std::size_t ghosts = 0;  // nodes of this rank's region it does not own
   long region_generation = -1;
   long region_steps = 0;  // steps that integrated the region alone
-  // Held bond rows (parallel/held_rows.hpp): with hold_rows asked for, the first pass leaves
-  // this rank's bond arrays with the rows its passes read and no others (rows_held); the
-  // whole model's rows begin at whole_offsets, which index the bonds the ranks exchange.
+  // Held bond rows (parallel/held_rows.hpp): this rank's bond arrays hold the rows its passes
+  // read and no others (rows_held), searched so at set-up or, in a run that asks for them
+  // (hold_rows) after reading whole arrays (a restart), kept so by its first pass; the whole
+  // model's rows begin at whole_offsets (a checkpoint's layout).
   bool hold_rows = false;
   bool rows_held = false;
   std::vector<std::uint64_t> whole_offsets;

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <filesystem>
 #include <memory>
+#include <stdexcept>
 
 #include <fmt/format.h>
 
@@ -186,6 +187,8 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
   VelocityVerlet vv(m, ts.dt);
   if (dk.multirate) vv.set_multirate(dk.safety, dk.multirate_ratio);
   if (m.partition.active && dk.owned_integration) vv.enable_owned_integration();
+  if (m.partition.rows_held && !vv.owned_integration())
+    throw std::logic_error("held bond rows without owned integration");
   if (!restart) vv.initialize();
   std::unique_ptr<Adaptor> adaptor;
   if (dk.adapt.enabled) {
