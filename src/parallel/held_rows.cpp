@@ -63,7 +63,8 @@ BondFamilies build_held_families(RowPartition& p, const NodeSet& ns, const Quadr
   const auto P = static_cast<std::size_t>(mpi::size()), r = static_cast<std::size_t>(mpi::rank());
   const std::size_t lo = n * r / P, hi = n * (r + 1) / P;
   std::vector<char> slice(n, 0);
-  std::fill(slice.begin() + static_cast<std::ptrdiff_t>(lo), slice.begin() + static_cast<std::ptrdiff_t>(hi), 1);
+  std::fill(slice.begin() + static_cast<std::ptrdiff_t>(lo),
+            slice.begin() + static_cast<std::ptrdiff_t>(hi), 1);
   const std::vector<std::uint64_t> counted = family_offsets(ns, q, &slice);
   std::vector<std::uint64_t> mine(hi - lo);
   for (std::size_t i = lo; i < hi; ++i) mine[i - lo] = counted[i + 1] - counted[i];

@@ -393,7 +393,8 @@ void VelocityVerlet::compute_accelerations(const std::vector<std::uint32_t>* row
     if (rows == &pass_rows_)
       bond_evals_ += pass_bonds_;  // counted per rate class when the classes were formed
     else
-      for (std::uint32_t i : *rows) bond_evals_ += static_cast<double>(whole_row_length(m_.partition, m_.bonds, i));
+      for (std::uint32_t i : *rows)
+        bond_evals_ += static_cast<double>(whole_row_length(m_.partition, m_.bonds, i));
   } else {
     broken_total_ += internal_forces(m_, m_.damage_enabled, log,
                                      want_energy || keep_recent ? &energy_ : nullptr);
