@@ -5,7 +5,9 @@
 # (the ranks' VTU pieces merged; hence the same broken bonds and displacements), summary.json but
 # timings, paths and the rank report (the external work, which ranks that integrate their own
 # regions sum per rank, to round-off). Then a
-# checkpoint written on 2 ranks (every 100 steps) restarts on 3 and ends as the serial run does;
+# checkpoint written on 2 ranks (every 100 steps) restarts on 3 and ends as the serial run does
+# (with held rows, from bond pieces, which also restart a serial run; a serial checkpoint restarts
+# on 2 ranks holding their rows);
 # where the ranks integrate their own regions (parallel/ghost_layer.hpp), they did so on some steps;
 # an output failure on rank 0 stops every rank with exit code 4, and a diverging run stops every
 # rank with the serial run's diagnosis.
@@ -170,6 +172,37 @@ PY
     else
       echo "FAIL $name: restart on 3 ranks: ${r:-$(tail -3 "$ck-restart.log")}"; fail=1
     fi
+  fi
+  # Held rows checkpoint in pieces, one per rank, beside checkpoint.bin (the step-200 ones alone
+  # once the 3-rank restart wrote no checkpoint of its own); a serial run restarts from them, and
+  # a serial run's checkpoint restarts on 2 ranks that hold their rows.
+  if [[ $name == restart-held-* ]]; then
+    pieces=$(cd "$tmp/$name-ck" && ls checkpoint.rows.* 2> /dev/null | tr '\n' ' ')
+    if [[ $pieces == "checkpoint.rows.200.0-of-2.bin checkpoint.rows.200.1-of-2.bin " ]]; then
+      echo "ok   $name: the checkpoint's bond rows in pieces: $pieces"
+    else echo "FAIL $name: pieces beside the checkpoint: '$pieces'"; fail=1; fi
+    # A piece missing, or one of another checkpoint: the restart refuses (exit 2), naming it.
+    for bad in missing swapped; do
+      cb="$tmp/$name-$bad"; cp -r "$tmp/$name-ck" "$cb"
+      if [[ $bad == missing ]]; then rm "$cb/checkpoint.rows.200.1-of-2.bin"
+      else cp "$cb/checkpoint.rows.200.0-of-2.bin" "$cb/checkpoint.rows.200.1-of-2.bin"; fi
+      mpirun -np 2 "$bin" run "$deck" --out "$cb" "${args[@]}" --restart "$cb" > "$cb.log" 2>&1; rc=$?
+      if [[ $rc -eq 2 ]] && grep -q "checkpoint.rows.200.1-of-2.bin" "$cb.log"; then
+        echo "ok   $name: a $bad piece refused: $(grep -m1 -o 'checkpoint.rows.200.1-of-2.bin.*' "$cb.log")"
+      else echo "FAIL $name: a $bad piece: exit $rc: $(tail -2 "$cb.log")"; fail=1; fi
+    done
+    ck1="$tmp/$name-ck1"; ck2="$tmp/$name-ck2"
+    mpirun -np 2 "$bin" run "$deck" --out "$ck1" "${args[@]}" --set output.checkpoint_every=100 \
+      > "$ck1.log" 2>&1 && "$bin" run "$deck" --out "$ck1" "${args[@]}" --restart "$ck1" \
+      > "$ck1-restart.log" 2>&1 && r=$(same "$tmp/$name-1" "$ck1" 2>&1) &&
+      echo "ok   $name: pieces of a 2-rank run restarted serially: $r" ||
+      { echo "FAIL $name: serial restart from pieces: ${r:-$(tail -3 "$ck1-restart.log")}"; fail=1; }
+    "$bin" run "$deck" --out "$ck2" "${args[@]}" --set output.checkpoint_every=100 \
+      > "$ck2.log" 2>&1 && mpirun -np 2 "$bin" run "$deck" --out "$ck2" "${args[@]}" --restart "$ck2" \
+      > "$ck2-restart.log" 2>&1 && r=$(same "$tmp/$name-1" "$ck2" 2>&1) &&
+      python3 -c "import json, sys; sys.exit(not json.load(open('$ck2/summary.json'))['ranks']['held_bond_rows'])" &&
+      echo "ok   $name: a serial checkpoint restarted on 2 ranks holding their rows: $r" ||
+      { echo "FAIL $name: 2-rank restart from a serial checkpoint: ${r:-$(tail -3 "$ck2-restart.log")}"; fail=1; }
   fi
 done
 # An output failure meets rank 0 alone (it writes the files): every rank stops, exit code 4.

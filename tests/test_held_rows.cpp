@@ -1,9 +1,13 @@
 // Held bond rows (parallel/held_rows.hpp): a rank's kept rows are the whole model's rows, entry
 // for entry, under the bond names the ranks exchange; a name in a row it does not hold names no
-// bond of its own; the owners' rows reassemble the whole arrays a serial run holds.
+// bond of its own; the owners' rows, checkpointed in pieces, restore the whole arrays a serial run
+// holds and any other split's held rows.
 #include <gtest/gtest.h>
 
+#include <map>
+
 #include "input/deck_builder.hpp"
+#include "model/model_state.hpp"
 #include "parallel/held_rows.hpp"
 #include "setup/build_model.hpp"
 
@@ -59,19 +63,82 @@ TEST(HeldRows, KeptRowsAreTheWholeRowsUnderTheBondNames) {
   EXPECT_LT(h.num_bonds(), whole.num_bonds());
 }
 
-TEST(HeldRows, OwnersRowsReassembleTheWholeArrays) {
-  Model m = plate();
-  const BondFamilies whole = m.bonds;
-  // One rank owning every row: the gather is its own rows, put back in the whole model's places.
-  RowPartition p;
-  for (std::uint32_t i = 0; i < m.nodes.size(); ++i) p.owned.push_back(i);
-  p.all_owned = p.owned;
-  hold_bond_rows(p, m.bonds, p.owned);
-  const BondFamilies back = gather_whole_bonds(p, m.bonds);
-  EXPECT_EQ(back.offsets, whole.offsets);
-  EXPECT_EQ(back.num_bonds(), whole.num_bonds());
-  EXPECT_EQ(back.neighbor, whole.neighbor);
-  EXPECT_EQ(back.inv_length, whole.inv_length);
-  EXPECT_EQ(back.beta, whole.beta);
-  EXPECT_EQ(back.neighbor.capacity(), whole.neighbor.capacity());
+// A checkpoint of held rows keeps each rank's own rows in a piece: the pieces of two "ranks"
+// (odd and even rows) restore the whole arrays a serial run holds, bit for bit and with its room,
+// and the held rows of another split; a piece missing or repeated is refused.
+TEST(HeldRows, CheckpointPiecesRestoreWholeAndHeldRows) {
+  Model base = plate();
+  // Some broken bonds and a history value, so that the pieces carry more than the fresh build.
+  base.bonds.enable_state();
+  for (std::uint64_t k = 0; k < base.bonds.num_bonds(); k += 7) base.bonds.beta[k] = 0.0f;
+  for (std::uint64_t k = 0; k < base.bonds.num_bonds(); k += 5) base.bonds.state[k] = 1e-3 * k;
+  const BondFamilies whole = base.bonds;
+  const std::size_t n = base.nodes.size();
+  auto held = [&](auto pick) {
+    Model m = base;
+    for (std::uint32_t i = 0; i < n; ++i)
+      if (pick(i)) m.partition.owned.push_back(i);
+    hold_bond_rows(m.partition, m.bonds, m.partition.owned);
+    return m;
+  };
+  const Model even = held([](std::uint32_t i) { return i % 2 == 0; });
+  const Model odd = held([](std::uint32_t i) { return i % 2 == 1; });
+  std::map<std::string, std::string> files = {{"checkpoint.rows.9.0-of-2.bin", bond_rows_piece(even)},
+                                              {"checkpoint.rows.9.1-of-2.bin", bond_rows_piece(odd)}};
+  const BondPieces pieces{{"checkpoint.rows.9.0-of-2.bin", "checkpoint.rows.9.1-of-2.bin"}, {11, 12}};
+  ArchiveWriter w;
+  save_model_state(w, even, &pieces);
+  const PieceReader read = [&](const std::string& f, std::uint64_t sum) {
+    EXPECT_EQ(sum, f == pieces.files[0] ? 11u : 12u);
+    return files.at(f);
+  };
+
+  Model serial = plate();
+  serial.bonds.enable_state();
+  ArchiveReader r(w.bytes(), "test");
+  restore_model_state(r, serial, read);
+  EXPECT_TRUE(r.at_end());
+  EXPECT_EQ(serial.bonds.offsets, whole.offsets);
+  EXPECT_EQ(serial.bonds.num_bonds(), whole.num_bonds());
+  EXPECT_EQ(serial.bonds.neighbor, whole.neighbor);
+  EXPECT_EQ(serial.bonds.inv_length, whole.inv_length);
+  EXPECT_EQ(serial.bonds.beta, whole.beta);
+  EXPECT_EQ(serial.bonds.state, whole.state);
+  EXPECT_EQ(serial.bonds.neighbor.capacity(), whole.neighbor.capacity());
+
+  // Three "ranks" now: this one holds every third row, from whichever piece has it.
+  Model third = plate();
+  third.bonds.enable_state();
+  std::vector<std::uint32_t> keep;
+  for (std::uint32_t i = 0; i < n; i += 3) keep.push_back(i);
+  hold_bond_rows(third.partition, third.bonds, keep);
+  ArchiveReader r3(w.bytes(), "test");
+  restore_model_state(r3, third, read);
+  for (std::uint32_t i : keep)
+    for (std::uint64_t g = whole.begin(i); g < whole.end(i); ++g) {
+      std::uint64_t k = 0;
+      ASSERT_TRUE(third.bonds.named(whole.name(i, g), k));
+      EXPECT_EQ(third.bonds.beta[k], whole.beta[g]);
+      EXPECT_EQ(third.bonds.state[k], whole.state[g]);
+      EXPECT_EQ(third.bonds.neighbor[k], whole.neighbor[g]);
+    }
+  EXPECT_EQ(third.partition.whole_capacity, whole.neighbor.capacity());
+
+  // A serial run's checkpoint (whole arrays inline) continued with held rows.
+  ArchiveWriter ws;
+  save_model_state(ws, base);
+  Model from_serial = plate();
+  from_serial.bonds.enable_state();
+  hold_bond_rows(from_serial.partition, from_serial.bonds, keep);
+  ArchiveReader rs(ws.bytes(), "test");
+  restore_model_state(rs, from_serial);
+  EXPECT_EQ(from_serial.bonds.beta, third.bonds.beta);
+  EXPECT_EQ(from_serial.bonds.state, third.bonds.state);
+
+  // The same piece twice: its rows twice, the odd rows never.
+  const PieceReader twice = [&](const std::string&, std::uint64_t) { return files.begin()->second; };
+  Model bad = plate();
+  bad.bonds.enable_state();
+  ArchiveReader rb(w.bytes(), "test");
+  EXPECT_THROW(restore_model_state(rb, bad, twice), ArchiveError);
 }

@@ -46,6 +46,13 @@ class ArchiveWriter {
   void put(const std::array<std::vector<T>, N>& a) {
     for (const auto& v : a) put(v);
   }
+  // An array written in slices: put its length (std::uint64_t), then append slices adding up
+  // to it; it reads back as one vector.
+  template <class T>
+  void append(const T* data, std::size_t n) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    buf_.append(reinterpret_cast<const char*>(data), n * sizeof(T));
+  }
   void tag(const char (&t)[5]) { buf_.append(t, 4); }
   const std::string& bytes() const { return buf_; }
 

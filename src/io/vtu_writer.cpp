@@ -7,12 +7,14 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <stdexcept>
 #include <string>
 
 #include <zlib.h>
 
 #include <fmt/format.h>
+
 
 namespace periadapt {
 
@@ -26,6 +28,20 @@ VtuSeries::VtuSeries(std::string directory, std::string basename, bool zlib)
 
 std::string VtuSeries::snapshot_stem() const {
   return fmt::format("{}_{:05d}", base_, entries_.size());
+}
+
+void VtuSeries::resume(std::vector<std::pair<double, std::string>> entries, bool remove_later) {
+  entries_ = std::move(entries);
+  if (!remove_later) return;
+  // base_NNNNN.vtu, base_NNNNN.pvtu and base_NNNNN_rK.vtu with NNNNN past the series.
+  const std::regex name(base_ + R"(_(\d{5,})(\.vtu|\.pvtu|_r\d+\.vtu))");
+  std::error_code ec;
+  for (const auto& e : std::filesystem::directory_iterator(dir_, ec)) {
+    std::smatch m;
+    const std::string f = e.path().filename().string();
+    if (std::regex_match(f, m, name) && std::stoull(m[1].str()) >= entries_.size())
+      std::filesystem::remove(e.path(), ec);
+  }
 }
 
 std::string VtuSeries::write(double time, const NodeSet& ns, const std::vector<PointField>& fields) {

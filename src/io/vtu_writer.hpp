@@ -34,7 +34,9 @@ class VtuSeries {
   const std::string& pvd_path() const { return pvd_; }
   // The snapshots written so far (time, file name); a restart continues the series after them.
   const std::vector<std::pair<double, std::string>>& entries() const { return entries_; }
-  void resume(std::vector<std::pair<double, std::string>> entries) { entries_ = std::move(entries); }
+  // With `remove_later`, the folder's snapshot files after them go (those of a run that went on
+  // past the checkpoint, which the continued series replaces, perhaps with other rank counts).
+  void resume(std::vector<std::pair<double, std::string>> entries, bool remove_later);
 
  private:
   void write_pvd() const;

@@ -1,6 +1,10 @@
 #include "model/model_state.hpp"
 
+#include <algorithm>
+#include <stdexcept>
 #include <string>
+
+#include "parallel/held_rows.hpp"
 
 namespace periadapt {
 
@@ -53,18 +57,225 @@ void scratch_arrays(Archive& a, M& m) {
   a(m.lps_scratch.reach);
   a(m.lps_scratch.packed);
 }
+constexpr std::uint8_t kBondsInline = 0, kBondsInPieces = 1;
+
+// Whole bond arrays as a checkpoint holds them inline: consistent with n nodes.
+void check_whole_arrays(const BondFamilies& bf, std::size_t n, std::uint64_t room) {
+  if (bf.offsets.size() != n + 1 || (!bf.ends.empty() && bf.ends.size() != n) ||
+      bf.neighbor.size() < bf.offsets.back() || bf.inv_length.size() != bf.neighbor.size() ||
+      bf.beta.size() != bf.neighbor.size() ||
+      bf.state.size() != (bf.keeps_state ? bf.neighbor.size() : 0))
+    throw ArchiveError("the checkpoint's bond arrays do not fit its nodes (corrupt)");
+  for (std::uint32_t j : bf.neighbor)
+    if (j >= n) throw ArchiveError("the checkpoint's bonds name a node it does not hold (corrupt)");
+  if (room < bf.neighbor.size() || room > 4 * bf.neighbor.size() + 4096)
+    throw ArchiveError("the checkpoint's bond array room is out of range (corrupt)");
+}
+
+// Row begins of contiguous whole arrays: n + 1 ascending values from 0.
+void check_offsets(const std::vector<std::uint64_t>& offsets, std::size_t n) {
+  bool ok = offsets.size() == n + 1 && offsets[0] == 0;
+  for (std::size_t i = 0; ok && i < n; ++i) ok = offsets[i] <= offsets[i + 1];
+  if (!ok) throw ArchiveError("the checkpoint's bond rows do not fit its nodes (corrupt)");
+}
+
+// Bond arrays that rows are copied from.
+struct RowSource {
+  const std::vector<std::uint32_t>& neighbor;
+  const std::vector<double>& inv_length;
+  const std::vector<float>& beta;
+  const std::vector<double>& state;
+};
+// Row i, `len` bonds at `at` in the source, into its place in `to`.
+void copy_row(BondFamilies& to, std::size_t i, const RowSource& s, std::uint64_t at,
+              std::uint64_t len, std::size_t n) {
+  const std::uint64_t b = to.begin(i);
+  for (std::uint64_t q = 0; q < len; ++q)
+    if (s.neighbor[at + q] >= n)
+      throw ArchiveError("the checkpoint's bonds name a node it does not hold (corrupt)");
+  auto copy = [&](const auto& from, auto& into) {
+    std::copy_n(from.data() + at, len, into.data() + b);
+  };
+  copy(s.neighbor, to.neighbor);
+  copy(s.inv_length, to.inv_length);
+  copy(s.beta, to.beta);
+  if (to.keeps_state) copy(s.state, to.state);
+}
+
+// Whether held arrays take row i: they hold it (each held row is as long as the whole row, the
+// others are empty).
+bool holds_row(const BondFamilies& to, std::size_t i) { return to.end(i) > to.begin(i); }
+
+// The whole model's rows as the checkpoint records them, against the held rows built for this
+// run (the same deck and no refinement: the same rows).
+void check_held_layout(const Model& m, const std::vector<std::uint64_t>& offsets, bool keeps_state) {
+  if (offsets != m.partition.whole_offsets)
+    throw ArchiveError("the checkpoint's bond rows differ from the model's (another model?)");
+  if (keeps_state != m.bonds.keeps_state)
+    throw ArchiveError("the checkpoint and the deck differ in the bond law's history");
+}
+
+// Reads the pieces a checkpoint names into `to` (whole arrays sized by `offsets`, or held rows):
+// every row must be in exactly one piece.
+void read_pieces(ArchiveReader& r, BondFamilies& to, const std::vector<std::uint64_t>& offsets,
+                 bool whole, const PieceReader& read_piece) {
+  const std::size_t n = offsets.size() - 1;
+  const auto count = r.get<std::uint64_t>();
+  if (count < 1 || count > n + 1)
+    throw ArchiveError("the checkpoint names " + std::to_string(count) + " bond pieces (corrupt)");
+  std::vector<std::string> files(count);
+  for (std::string& f : files) r.get(f);
+  std::vector<std::uint64_t> sums;
+  r.get(sums);
+  if (sums.size() != count) throw ArchiveError("the checkpoint's bond pieces lack checksums (corrupt)");
+  if (!read_piece) throw ArchiveError("the checkpoint keeps its bond rows in pieces: no reader");
+  std::vector<char> seen(n, 0);
+  std::size_t rows_seen = 0;
+  for (std::size_t k = 0; k < count; ++k) {
+    const std::string payload = read_piece(files[k], sums[k]);
+    ArchiveReader pr(payload, files[k]);
+    pr.tag("ROWS");
+    if (pr.get<std::uint64_t>() != n)
+      throw ArchiveError(files[k] + ": a piece of a model with another node count");
+    std::vector<std::uint32_t> rows, neighbor;
+    std::vector<double> inv_length, state;
+    std::vector<float> beta;
+    pr.get(rows);
+    pr.get(neighbor);
+    pr.get(inv_length);
+    pr.get(beta);
+    pr.get(state);
+    if (!pr.at_end()) throw ArchiveError(files[k] + ": data past the piece's rows (corrupt)");
+    std::uint64_t total = 0;
+    for (std::uint32_t i : rows) {
+      if (i >= n || seen[i]) throw ArchiveError(files[k] + ": names a row twice or out of range");
+      seen[i] = 1;
+      total += offsets[i + 1] - offsets[i];
+    }
+    rows_seen += rows.size();
+    if (neighbor.size() != total || inv_length.size() != total || beta.size() != total ||
+        state.size() != (to.keeps_state ? total : 0))
+      throw ArchiveError(files[k] + ": its bond arrays do not fit its rows (corrupt)");
+    const RowSource src{neighbor, inv_length, beta, state};
+    std::uint64_t at = 0;
+    for (std::uint32_t i : rows) {
+      const std::uint64_t len = offsets[i + 1] - offsets[i];
+      if (whole || holds_row(to, i)) copy_row(to, i, src, at, len, n);
+      at += len;
+    }
+  }
+  if (rows_seen != n) throw ArchiveError("the checkpoint's bond pieces miss rows (corrupt)");
+}
+
+// The bond section: inline whole arrays or pieces, into whole or held arrays.
+void restore_bonds(ArchiveReader& r, Model& m, const PieceReader& read_piece) {
+  const std::size_t n = m.nodes.size();
+  auto get = [&](auto& v) { r.get(v); };
+  const bool held = m.partition.rows_held;
+  const auto layout = r.get<std::uint8_t>();
+  if (layout == kBondsInline) {
+    BondFamilies whole;
+    bond_arrays(get, whole);
+    const auto room = r.get<std::uint64_t>();
+    check_whole_arrays(whole, n, room);
+    if (!held) {
+      m.bonds = std::move(whole);  // its capacity is the checkpoint's, not the fresh build's
+      m.bonds.neighbor.reserve(room);
+      m.bonds.inv_length.reserve(room);
+      m.bonds.beta.reserve(room);
+      if (m.bonds.keeps_state) m.bonds.state.reserve(room);
+      return;
+    }
+    // A checkpoint of a run that held the whole arrays (a serial one), continued with held rows.
+    if (!can_hold_rows(whole))
+      throw ArchiveError("the checkpoint's bond rows differ from the model's (another model?)");
+    check_held_layout(m, whole.offsets, whole.keeps_state);
+    const RowSource src{whole.neighbor, whole.inv_length, whole.beta, whole.state};
+    for (std::size_t i = 0; i < n; ++i)
+      if (holds_row(m.bonds, i))
+        copy_row(m.bonds, i, src, whole.begin(i), whole.end(i) - whole.begin(i), n);
+    m.partition.whole_capacity = room;
+    return;
+  }
+  if (layout != kBondsInPieces)
+    throw ArchiveError("unknown bond layout " + std::to_string(layout) + " (corrupt)");
+  std::vector<std::uint64_t> offsets;
+  r.get(offsets);
+  check_offsets(offsets, n);
+  const bool keeps_state = r.get<std::uint8_t>() != 0;
+  const auto room = r.get<std::uint64_t>();
+  const std::uint64_t total = offsets.back();
+  if (room < total || room > 4 * total + 4096)
+    throw ArchiveError("the checkpoint's bond array room is out of range (corrupt)");
+  if (held) {
+    check_held_layout(m, offsets, keeps_state);
+    m.partition.whole_capacity = room;
+    read_pieces(r, m.bonds, offsets, false, read_piece);
+    return;
+  }
+  BondFamilies& bf = m.bonds;
+  bf = BondFamilies{};
+  bf.neighbor.reserve(room);
+  bf.inv_length.reserve(room);
+  bf.beta.reserve(room);
+  bf.neighbor.resize(total);
+  bf.inv_length.resize(total);
+  bf.beta.resize(total);
+  bf.keeps_state = keeps_state;
+  if (keeps_state) {
+    bf.state.reserve(room);
+    bf.state.resize(total);
+  }
+  bf.offsets = std::move(offsets);
+  bf.close_contiguous();
+  read_pieces(r, bf, bf.offsets, true, read_piece);
+}
 }  // namespace
 
-void save_model_state(ArchiveWriter& w, const Model& m) {
+std::string bond_rows_piece(const Model& m) {
+  const RowPartition& p = m.partition;
+  const BondFamilies& bf = m.bonds;
+  std::uint64_t total = 0;
+  for (std::uint32_t i : p.owned) total += bf.end(i) - bf.begin(i);
+  ArchiveWriter w;
+  w.tag("ROWS");
+  w.put(std::uint64_t{bf.num_nodes()});
+  w.put(p.owned);
+  auto rows_of = [&](const auto& a, std::uint64_t length) {
+    w.put(length);
+    for (std::uint32_t i : p.owned) w.append(a.data() + bf.begin(i), bf.end(i) - bf.begin(i));
+  };
+  rows_of(bf.neighbor, total);
+  rows_of(bf.inv_length, total);
+  rows_of(bf.beta, total);
+  if (bf.keeps_state) rows_of(bf.state, total);
+  else w.put(std::vector<double>{});
+  return w.bytes();
+}
+
+void save_model_state(ArchiveWriter& w, const Model& m, const BondPieces* pieces) {
   auto put = [&](const auto& v) { w.put(v); };
   w.tag("NODE");
   w.put(m.nodes.dim);
   node_arrays(put, m.nodes);
   w.tag("BOND");
-  bond_arrays(put, m.bonds);
   // The arrays' room decides when a refinement event compacts them: kept, so a restarted run
   // allocates as the uninterrupted one does.
-  w.put(std::uint64_t{m.bonds.neighbor.capacity()});
+  const RowPartition& p = m.partition;
+  if (p.rows_held) {
+    if (!pieces) throw std::logic_error("a checkpoint of held bond rows needs their pieces");
+    w.put<std::uint8_t>(kBondsInPieces);
+    w.put(p.whole_offsets);
+    w.put<std::uint8_t>(m.bonds.keeps_state);
+    w.put(std::uint64_t{p.whole_capacity});
+    w.put(std::uint64_t{pieces->files.size()});
+    for (const std::string& f : pieces->files) w.put(f);
+    w.put(pieces->sums);
+  } else {
+    w.put<std::uint8_t>(kBondsInline);
+    bond_arrays(put, m.bonds);
+    w.put(std::uint64_t{m.bonds.neighbor.capacity()});
+  }
   w.tag("LOAD");
   w.put(std::uint64_t{m.loads.size()});
   for (const BodyLoad& l : m.loads) w.put(l.nodes);
@@ -76,7 +287,7 @@ void save_model_state(ArchiveWriter& w, const Model& m) {
   w.put(std::uint64_t{m.pdro.counters ? m.pdro.counters->breaks.load() : 0});
 }
 
-void restore_model_state(ArchiveReader& r, Model& m) {
+void restore_model_state(ArchiveReader& r, Model& m, const PieceReader& read_piece) {
   auto get = [&](auto& v) { r.get(v); };
   r.tag("NODE");
   const int dim = r.get<int>();
@@ -100,23 +311,7 @@ void restore_model_state(ArchiveReader& r, Model& m) {
     consistent = consistent && b < m.block_materials.size();
   if (!consistent) throw ArchiveError("the checkpoint's node arrays differ in length (corrupt)");
   r.tag("BOND");
-  m.bonds = BondFamilies{};  // its capacity is the checkpoint's, not the fresh build's
-  bond_arrays(get, m.bonds);
-  const BondFamilies& bf = m.bonds;
-  if (bf.offsets.size() != n + 1 || (!bf.ends.empty() && bf.ends.size() != n) ||
-      bf.neighbor.size() < bf.offsets.back() || bf.inv_length.size() != bf.neighbor.size() ||
-      bf.beta.size() != bf.neighbor.size() ||
-      bf.state.size() != (bf.keeps_state ? bf.neighbor.size() : 0))
-    throw ArchiveError("the checkpoint's bond arrays do not fit its nodes (corrupt)");
-  for (std::uint32_t j : bf.neighbor)
-    if (j >= n) throw ArchiveError("the checkpoint's bonds name a node it does not hold (corrupt)");
-  const auto room = r.get<std::uint64_t>();
-  if (room < bf.neighbor.size() || room > 4 * bf.neighbor.size() + 4096)
-    throw ArchiveError("the checkpoint's bond array room is out of range (corrupt)");
-  m.bonds.neighbor.reserve(room);
-  m.bonds.inv_length.reserve(room);
-  m.bonds.beta.reserve(room);
-  if (m.bonds.keeps_state) m.bonds.state.reserve(room);
+  restore_bonds(r, m, read_piece);
   r.tag("LOAD");
   if (r.get<std::uint64_t>() != m.loads.size())
     throw ArchiveError("the checkpoint's number of loads differs from the deck's");

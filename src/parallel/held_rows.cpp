@@ -1,7 +1,6 @@
 #include "parallel/held_rows.hpp"
 
 #include <algorithm>
-#include <limits>
 #include <stdexcept>
 
 #include "parallel/mpi_env.hpp"
@@ -130,55 +129,6 @@ void share_held_setup(const RowPartition& p, NodeSet& ns, const BondFamilies& bf
 
 std::uint64_t whole_bond_count(const RowPartition& p, const BondFamilies& bf) {
   return p.rows_held ? p.whole_offsets.back() : bf.num_bonds();
-}
-
-BondFamilies gather_whole_bonds(const RowPartition& p, const BondFamilies& bf) {
-  if (p.whole_offsets.back() > static_cast<std::uint64_t>(std::numeric_limits<int>::max()))
-    throw std::runtime_error("a checkpoint gathers every bond to rank 0, which MPI counts in int: "
-                             "this model has more than 2^31 bonds");
-  // Each owner's rows in ascending order, as every rank lists them in p.all_owned.
-  std::vector<std::uint32_t> nbr;
-  std::vector<double> inv, state;
-  std::vector<float> beta;
-  for (std::uint32_t i : p.owned) {
-    const std::uint64_t b = bf.begin(i), e = bf.end(i);
-    nbr.insert(nbr.end(), bf.neighbor.begin() + b, bf.neighbor.begin() + e);
-    inv.insert(inv.end(), bf.inv_length.begin() + b, bf.inv_length.begin() + e);
-    beta.insert(beta.end(), bf.beta.begin() + b, bf.beta.begin() + e);
-    if (bf.keeps_state) state.insert(state.end(), bf.state.begin() + b, bf.state.begin() + e);
-  }
-  const std::vector<std::uint32_t> all_nbr = mpi::gather_to_root(nbr);
-  const std::vector<double> all_inv = mpi::gather_to_root(inv);
-  const std::vector<float> all_beta = mpi::gather_to_root(beta);
-  const std::vector<double> all_state = mpi::gather_to_root(state);
-  BondFamilies w;
-  if (mpi::rank() != 0) return w;
-  const std::uint64_t total = p.whole_offsets.back();
-  w.offsets = p.whole_offsets;
-  w.neighbor.reserve(p.whole_capacity);
-  w.inv_length.reserve(p.whole_capacity);
-  w.beta.reserve(p.whole_capacity);
-  w.neighbor.resize(total);
-  w.inv_length.resize(total);
-  w.beta.resize(total);
-  w.keeps_state = bf.keeps_state;
-  if (w.keeps_state) {
-    w.state.reserve(p.whole_capacity);
-    w.state.resize(total);
-  }
-  std::uint64_t at = 0;
-  for (std::uint32_t i : p.all_owned) {
-    const std::uint64_t b = p.whole_offsets[i], len = p.whole_offsets[i + 1] - b;
-    std::copy_n(all_nbr.begin() + at, len, w.neighbor.begin() + b);
-    std::copy_n(all_inv.begin() + at, len, w.inv_length.begin() + b);
-    std::copy_n(all_beta.begin() + at, len, w.beta.begin() + b);
-    if (w.keeps_state) std::copy_n(all_state.begin() + at, len, w.state.begin() + b);
-    at += len;
-  }
-  if (at != total || at != all_nbr.size())
-    throw std::logic_error("held bond rows: the owners' rows do not cover the model");
-  w.close_contiguous();
-  return w;
 }
 
 }  // namespace periadapt

@@ -4,8 +4,9 @@
 // LPS its region's, whose families give the dilatations and the mutual-bond reach its rows use)
 // and frees the rest, the bulk of a model's memory (16 B per bond against about 270 B per node).
 // The rows keep their contents and order, so a bond's name (BondFamilies::name: its row and its
-// place there) is the same on every rank that holds its row; a checkpoint gathers the rows to
-// rank 0 into the whole model's arrays (RowPartition::whole_offsets).
+// place there) is the same on every rank that holds its row; a checkpoint keeps each rank's own
+// rows in a piece of its own (model/model_state.hpp), laid out by the whole model's row lengths
+// (RowPartition::whole_offsets).
 #include <cstdint>
 #include <vector>
 
@@ -48,9 +49,5 @@ inline std::uint64_t whole_row_length(const RowPartition& p, const BondFamilies&
 
 // The bond count of the whole model (what a serial run reports).
 std::uint64_t whole_bond_count(const RowPartition& p, const BondFamilies& bf);
-
-// Every owner's rows assembled into the whole model's arrays on rank 0, as a serial run holds
-// them (the room included); the other ranks get empty families (collective).
-BondFamilies gather_whole_bonds(const RowPartition& p, const BondFamilies& bf);
 
 }  // namespace periadapt

@@ -35,8 +35,6 @@ template <>
 MPI_Datatype type_of<std::uint64_t>() { return MPI_UINT64_T; }
 template <>
 MPI_Datatype type_of<int>() { return MPI_INT; }
-template <>
-MPI_Datatype type_of<float>() { return MPI_FLOAT; }
 #endif
 }  // namespace
 
@@ -178,8 +176,6 @@ template std::vector<double> all_gather(const std::vector<double>&, std::vector<
 template std::vector<std::uint32_t> all_gather(const std::vector<std::uint32_t>&, std::vector<int>*);
 template std::vector<std::uint64_t> all_gather(const std::vector<std::uint64_t>&, std::vector<int>*);
 template std::vector<int> all_gather(const std::vector<int>&, std::vector<int>*);
-template std::vector<double> gather_to_root(const std::vector<double>&);
-template std::vector<float> gather_to_root(const std::vector<float>&);
-template std::vector<std::uint32_t> gather_to_root(const std::vector<std::uint32_t>&);
+template std::vector<std::uint64_t> gather_to_root(const std::vector<std::uint64_t>&);
 
 }  // namespace periadapt::mpi

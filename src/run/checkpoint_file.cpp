@@ -57,22 +57,24 @@ void write_checkpoint(const std::string& path, const CheckpointInfo& info, const
   }, true);
 }
 
-Checkpoint read_checkpoint(const std::string& path_or_dir, const Deck& dk) {
-  namespace fs = std::filesystem;
+namespace {
+// The checks every checkpoint file passes: header, format, length, checksum, build and deck.
+Checkpoint read_checked(const std::string& path, const Deck& dk) {
   Checkpoint c;
-  std::error_code ec;
-  c.path = fs::is_directory(path_or_dir, ec) ? path_or_dir + "/" + kCheckpointName : path_or_dir;
-  if (!fs::is_regular_file(c.path, ec))
-    refuse(c.path, "no checkpoint here (a run writes checkpoint.bin into its output folder every "
-                   "output.checkpoint_every steps and when stopped by SIGINT or SIGTERM)");
-  std::ifstream in(c.path, std::ios::binary);
-  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (!in.good() && !in.eof()) refuse(c.path, "cannot read the file");
+  c.path = path;
+  std::ifstream in(c.path, std::ios::binary | std::ios::ate);
+  const std::streamoff size = in ? static_cast<std::streamoff>(in.tellg()) : -1;
+  if (size < 0) refuse(c.path, "cannot read the file");
+  std::string bytes(static_cast<std::size_t>(size), '\0');
+  in.seekg(0);
+  if (!in.read(bytes.data(), size)) refuse(c.path, "cannot read the file");
   if (bytes.size() < kMagicSize || bytes.compare(0, kMagicSize, kMagic) != 0)
     refuse(c.path, "not a PeriAdapt checkpoint (no header)");
   try {
     // The header's fields after the magic: format, header, payload size, checksum, payload.
-    const std::string rest = bytes.substr(kMagicSize);
+    // (The file's bytes become the payload in place: a restart holds one copy of it.)
+    std::string rest = std::move(bytes);
+    rest.erase(0, kMagicSize);
     ArchiveReader r(rest, c.path);
     const auto format = r.get<std::uint32_t>();
     if (format != kCheckpointFormat)
@@ -96,7 +98,8 @@ Checkpoint read_checkpoint(const std::string& path_or_dir, const Deck& dk) {
                                    "or corrupt)", rest.size() - r.position(), size));
       return s;
     }();
-    c.payload = rest.substr(r.position());
+    rest.erase(0, r.position());
+    c.payload = std::move(rest);
     if (fnv1a(c.payload) != sum) refuse(c.path, "checksum mismatch: the file is corrupt");
   } catch (const ArchiveError& e) {
     refuse(c.path, e.what());
@@ -110,6 +113,31 @@ Checkpoint read_checkpoint(const std::string& path_or_dir, const Deck& dk) {
                                "solver.end_time and solver.steps may change on a restart",
                                c.info.deck_file));
   return c;
+}
+}  // namespace
+
+Checkpoint read_checkpoint(const std::string& path_or_dir, const Deck& dk) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const std::string path =
+      fs::is_directory(path_or_dir, ec) ? path_or_dir + "/" + kCheckpointName : path_or_dir;
+  if (!fs::is_regular_file(path, ec))
+    refuse(path, "no checkpoint here (a run writes checkpoint.bin into its output folder every "
+                 "output.checkpoint_every steps and when stopped by SIGINT or SIGTERM)");
+  return read_checked(path, dk);
+}
+
+std::uint64_t checkpoint_checksum(const std::string& payload) { return fnv1a(payload); }
+
+std::string read_checkpoint_piece(const std::string& path, const Deck& dk, std::uint64_t sum) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    refuse(path, "missing: the checkpoint keeps each rank's bond rows in a piece beside it, and "
+                 "a restart reads them all (copy the pieces with checkpoint.bin)");
+  Checkpoint c = read_checked(path, dk);
+  if (fnv1a(c.payload) != sum)
+    refuse(path, "this piece belongs to another checkpoint than the one beside it");
+  return std::move(c.payload);
 }
 
 }  // namespace periadapt

@@ -8,7 +8,7 @@
 
 namespace periadapt {
 
-inline constexpr std::uint32_t kCheckpointFormat = 3;
+inline constexpr std::uint32_t kCheckpointFormat = 4;
 inline constexpr const char* kCheckpointName = "checkpoint.bin";
 
 struct CheckpointInfo {
@@ -35,5 +35,13 @@ struct Checkpoint {
   std::string payload;
 };
 Checkpoint read_checkpoint(const std::string& path_or_dir, const Deck& dk);
+
+// The checksum a checkpoint file carries for its payload (a checkpoint records its pieces' too).
+std::uint64_t checkpoint_checksum(const std::string& payload);
+
+// A piece written beside a checkpoint (one rank's bond rows): checked as a checkpoint is, and
+// against the checksum the checkpoint recorded for it, so a piece of another checkpoint is
+// refused. Returns its payload; throws DeckError (key --restart).
+std::string read_checkpoint_piece(const std::string& path, const Deck& dk, std::uint64_t sum);
 
 }  // namespace periadapt

@@ -18,6 +18,7 @@
 #include "parallel/held_rows.hpp"
 #include "parallel/mpi_env.hpp"
 #include "run/checkpoint_file.hpp"
+#include "run/checkpoint_pieces.hpp"
 #include "run/crack_tip_observer.hpp"
 #include "run/history_observer.hpp"
 #include "run/interrupt.hpp"
@@ -46,7 +47,7 @@ void remove_earlier_run_outputs(const std::string& dir) {
       return name.size() >= n && name.compare(name.size() - n, n, q) == 0;
     };
     if ((starts("snapshot_") && ends(".vtu")) || (starts("damage_") && ends("us.png")) ||
-        name == kCheckpointName || name == "refinement.csv" || name == "crack_speed.csv" ||
+        name == kCheckpointName || is_checkpoint_piece(name) || name == "refinement.csv" || name == "crack_speed.csv" ||
         name == "crack_speed.png" || name == "load_displacement.png")
       fs::remove(e.path(), ec);
   }
@@ -55,13 +56,13 @@ void remove_earlier_run_outputs(const std::string& dir) {
 // A distributed explicit run whose ranks hold their own bond rows from the set-up on
 // (parallel/held_rows.hpp): owned integration, and nothing that reads another rank's rows
 // (refinement events, dual-horizon memberships, contact, impactors, the overlay) or corrects
-// surfaces over the whole model at set-up. A restart reads the whole checkpoint and keeps its
-// rows from its first pass on.
-bool holds_rows_from_setup(const Deck& dk, const RunOptions& opt) {
+// surfaces over the whole model at set-up. A restart builds the same rows and reads their bonds
+// from the checkpoint.
+bool holds_rows_from_setup(const Deck& dk) {
   return mpi::distributed() && dk.owned_integration && !dk.adapt.enabled &&
          !dk.adapt.ghost_correction && !dk.dual_horizon && !dk.contact.enabled &&
          dk.impactors.empty() && !dk.pdro.enabled &&
-         dk.surface_correction == SurfaceCorrection::None && !opt.restart;
+         dk.surface_correction == SurfaceCorrection::None;
 }
 
 }  // namespace
@@ -131,7 +132,7 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
   const auto t_start = clock::now();
   RunResult res;
   Model& m = res.model;
-  if (holds_rows_from_setup(dk, opt)) {
+  if (holds_rows_from_setup(dk)) {
     const bool region = Formulation::named(dk.formulation, false)->state_based();
     m = build_model(dk, [&](const NodeSet& ns, const QuadratureSpec& q, RowPartition& p) {
       p.method = dk.partition;
@@ -158,7 +159,7 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
     restart = read_checkpoint(*opt.restart, dk);
     state.emplace(restart->payload, restart->path);
     try {
-      restore_model_state(*state, m);
+      restore_model_state(*state, m, piece_reader(restart->path, dk));
     } catch (const ArchiveError& e) {
       throw DeckError(restart->path, 0, 0, "--restart", e.what());
     }
@@ -237,9 +238,16 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
 
   // Checkpoints: the state after a step and its scheduled outputs; the run's own files so far
   // travel inside, so a restart rewrites them as they were at that step.
+  // Held bond rows travel in pieces, one per rank, beside it.
+  const bool writes_files = mpi::max(static_cast<long>(opt.write_files)) != 0;
   auto write_run_checkpoint = [&]() {
+    CheckpointInfo info{build_id(), deck_fingerprint(dk), dk.file, omp_get_max_threads(),
+                        vv.step_count(), vv.time()};
+    BondPieces pieces;
+    if (m.partition.rows_held) pieces = write_bond_pieces(dir, info, m);
+    if (!opt.write_files) return;
     ArchiveWriter w;
-    save_model_state(w, m);
+    save_model_state(w, m, &pieces);
     vv.save_state(w);
     w.put<std::uint8_t>(adaptor != nullptr);
     if (adaptor) adaptor->save_state(w);
@@ -249,9 +257,8 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
     w.put(tot.solver_s);
     w.put(tot.sampling_s);
     w.put(view.output_seconds);
-    CheckpointInfo info{build_id(), deck_fingerprint(dk), dk.file, omp_get_max_threads(),
-                        vv.step_count(), vv.time()};
     write_checkpoint(dir + "/" + kCheckpointName, info, w.bytes());
+    remove_stale_pieces(dir, pieces);
   };
   auto restore_run_state = [&](ArchiveReader& r) {
     vv.restore_state(r);
@@ -315,15 +322,7 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
       if (mpi::max(wanted)) vv.sync_state();
     }
     observe(s, false);
-    if (checkpoint && m.partition.rows_held) {
-      // The owners' rows, assembled on rank 0 for as long as it writes them.
-      BondFamilies whole = gather_whole_bonds(m.partition, m.bonds);
-      std::swap(m.bonds, whole);
-      if (opt.write_files) write_run_checkpoint();
-      std::swap(m.bonds, whole);
-    } else if (opt.write_files && checkpoint) {
-      write_run_checkpoint();
-    }
+    if (checkpoint && writes_files) write_run_checkpoint();
     if (res.interrupted) observe(s, true);
     std::string note;
     for (const auto& o : observers)

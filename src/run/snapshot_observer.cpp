@@ -60,14 +60,14 @@ void SnapshotObserver::save(ArchiveWriter& w) {
   }
 }
 
-void SnapshotObserver::restore(ArchiveReader& r, RunView&) {
+void SnapshotObserver::restore(ArchiveReader& r, RunView& view) {
   r.tag("VTUS");
   std::vector<std::pair<double, std::string>> entries(r.get<std::uint64_t>());
   for (auto& [t, f] : entries) {
     r.get(t);
     r.get(f);
   }
-  if (vtu_) vtu_->resume(std::move(entries));
+  if (vtu_) vtu_->resume(std::move(entries), view.write_files);
 }
 
 void SnapshotObserver::finish(RunView& view, RunResult& res) {
