@@ -65,7 +65,8 @@ TEST(HeldRows, KeptRowsAreTheWholeRowsUnderTheBondNames) {
 
 // A checkpoint of held rows keeps each rank's own rows in a piece: the pieces of two "ranks"
 // (odd and even rows) restore the whole arrays a serial run holds, bit for bit and with its room,
-// and the held rows of another split; a piece missing or repeated is refused.
+// and the held rows of another split, reading only the pieces with rows it holds; a piece with
+// another piece's rows is refused.
 TEST(HeldRows, CheckpointPiecesRestoreWholeAndHeldRows) {
   Model base = plate();
   // Some broken bonds and a history value, so that the pieces carry more than the fresh build.
@@ -76,8 +77,10 @@ TEST(HeldRows, CheckpointPiecesRestoreWholeAndHeldRows) {
   const std::size_t n = base.nodes.size();
   auto held = [&](auto pick) {
     Model m = base;
-    for (std::uint32_t i = 0; i < n; ++i)
+    for (std::uint32_t i = 0; i < n; ++i) {
       if (pick(i)) m.partition.owned.push_back(i);
+      m.partition.owner.push_back(static_cast<int>(i % 2));
+    }
     hold_bond_rows(m.partition, m.bonds, m.partition.owned);
     return m;
   };
@@ -88,8 +91,10 @@ TEST(HeldRows, CheckpointPiecesRestoreWholeAndHeldRows) {
   const BondPieces pieces{{"checkpoint.rows.9.0-of-2.bin", "checkpoint.rows.9.1-of-2.bin"}, {11, 12}};
   ArchiveWriter w;
   save_model_state(w, even, &pieces);
+  int reads = 0;
   const PieceReader read = [&](const std::string& f, std::uint64_t sum) {
     EXPECT_EQ(sum, f == pieces.files[0] ? 11u : 12u);
+    ++reads;
     return files.at(f);
   };
 
@@ -123,6 +128,17 @@ TEST(HeldRows, CheckpointPiecesRestoreWholeAndHeldRows) {
       EXPECT_EQ(third.bonds.neighbor[k], whole.neighbor[g]);
     }
   EXPECT_EQ(third.partition.whole_capacity, whole.neighbor.capacity());
+
+  // A rank holding the even rows alone reads their piece alone.
+  Model again = plate();
+  again.bonds.enable_state();
+  hold_bond_rows(again.partition, again.bonds, even.partition.owned);
+  reads = 0;
+  ArchiveReader r2(w.bytes(), "test");
+  restore_model_state(r2, again, read);
+  EXPECT_EQ(reads, 1);
+  EXPECT_EQ(again.bonds.beta, even.bonds.beta);
+  EXPECT_EQ(again.bonds.state, even.bonds.state);
 
   // A serial run's checkpoint (whole arrays inline) continued with held rows.
   ArchiveWriter ws;

@@ -10,6 +10,10 @@ class DeckError : public std::runtime_error {
   DeckError(const std::string& file, int line, int column, const std::string& key,
             const std::string& message)
       : std::runtime_error(format(file, line, column, key, message)), key_(key), line_(line) {}
+  // An error formatted elsewhere (another rank's, passed on as it is).
+  struct Formatted {};
+  DeckError(Formatted, const std::string& text, const std::string& key)
+      : std::runtime_error(text), key_(key), line_(0) {}
   const std::string& key() const { return key_; }
   int line() const { return line_; }
 

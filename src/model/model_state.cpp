@@ -115,8 +115,8 @@ void check_held_layout(const Model& m, const std::vector<std::uint64_t>& offsets
     throw ArchiveError("the checkpoint and the deck differ in the bond law's history");
 }
 
-// Reads the pieces a checkpoint names into `to` (whole arrays sized by `offsets`, or held rows):
-// every row must be in exactly one piece.
+// Reads the pieces a checkpoint names into `to` (whole arrays sized by `offsets`, or held rows),
+// those with rows it takes only; each holds exactly the rows the checkpoint gives it.
 void read_pieces(ArchiveReader& r, BondFamilies& to, const std::vector<std::uint64_t>& offsets,
                  bool whole, const PieceReader& read_piece) {
   const std::size_t n = offsets.size() - 1;
@@ -128,10 +128,19 @@ void read_pieces(ArchiveReader& r, BondFamilies& to, const std::vector<std::uint
   std::vector<std::uint64_t> sums;
   r.get(sums);
   if (sums.size() != count) throw ArchiveError("the checkpoint's bond pieces lack checksums (corrupt)");
+  std::vector<int> piece_of;
+  r.get(piece_of);
+  if (piece_of.size() != n) throw ArchiveError("the checkpoint's row pieces do not fit its nodes (corrupt)");
+  std::vector<char> wanted(count, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (piece_of[i] < 0 || static_cast<std::uint64_t>(piece_of[i]) >= count)
+      throw ArchiveError("the checkpoint names a bond piece out of range (corrupt)");
+    wanted[static_cast<std::size_t>(piece_of[i])] |= whole || holds_row(to, i);
+  }
   if (!read_piece) throw ArchiveError("the checkpoint keeps its bond rows in pieces: no reader");
   std::vector<char> seen(n, 0);
-  std::size_t rows_seen = 0;
   for (std::size_t k = 0; k < count; ++k) {
+    if (!wanted[k]) continue;
     const std::string payload = read_piece(files[k], sums[k]);
     ArchiveReader pr(payload, files[k]);
     pr.tag("ROWS");
@@ -148,11 +157,11 @@ void read_pieces(ArchiveReader& r, BondFamilies& to, const std::vector<std::uint
     if (!pr.at_end()) throw ArchiveError(files[k] + ": data past the piece's rows (corrupt)");
     std::uint64_t total = 0;
     for (std::uint32_t i : rows) {
-      if (i >= n || seen[i]) throw ArchiveError(files[k] + ": names a row twice or out of range");
+      if (i >= n || seen[i] || static_cast<std::size_t>(piece_of[i]) != k)
+        throw ArchiveError(files[k] + ": names a row of another piece (corrupt)");
       seen[i] = 1;
       total += offsets[i + 1] - offsets[i];
     }
-    rows_seen += rows.size();
     if (neighbor.size() != total || inv_length.size() != total || beta.size() != total ||
         state.size() != (to.keeps_state ? total : 0))
       throw ArchiveError(files[k] + ": its bond arrays do not fit its rows (corrupt)");
@@ -164,7 +173,10 @@ void read_pieces(ArchiveReader& r, BondFamilies& to, const std::vector<std::uint
       at += len;
     }
   }
-  if (rows_seen != n) throw ArchiveError("the checkpoint's bond pieces miss rows (corrupt)");
+  for (std::size_t i = 0; i < n; ++i)
+    if (!seen[i] && wanted[static_cast<std::size_t>(piece_of[i])])
+      throw ArchiveError(files[static_cast<std::size_t>(piece_of[i])] + ": misses row " +
+                         std::to_string(i) + " (corrupt)");
 }
 
 // The bond section: inline whole arrays or pieces, into whole or held arrays.
@@ -271,6 +283,7 @@ void save_model_state(ArchiveWriter& w, const Model& m, const BondPieces* pieces
     w.put(std::uint64_t{pieces->files.size()});
     for (const std::string& f : pieces->files) w.put(f);
     w.put(pieces->sums);
+    w.put(p.owner);  // each row's piece: a restart reads only the pieces with its rows
   } else {
     w.put<std::uint8_t>(kBondsInline);
     bond_arrays(put, m.bonds);

@@ -171,6 +171,22 @@ std::vector<T> gather_to_root(const std::vector<T>& mine) {
   return mine;
 }
 
+std::string first_text(const std::string& mine) {
+  if (!distributed()) return mine;
+  std::vector<int> counts;
+  const std::vector<int> all = all_gather(std::vector<int>(mine.begin(), mine.end()), &counts);
+  std::size_t at = 0;
+  for (int c : counts) {
+    if (c > 0) {
+      std::string s(static_cast<std::size_t>(c), '\0');
+      for (std::size_t k = 0; k < s.size(); ++k) s[k] = static_cast<char>(all[at + k]);
+      return s;
+    }
+    at += static_cast<std::size_t>(c);
+  }
+  return {};
+}
+
 template void all_gather_into(const std::vector<double>&, std::vector<double>&, std::vector<int>*);
 template std::vector<double> all_gather(const std::vector<double>&, std::vector<int>*);
 template std::vector<std::uint32_t> all_gather(const std::vector<std::uint32_t>&, std::vector<int>*);

@@ -4,6 +4,7 @@
 // call below is then a no-op that returns its input.
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace periadapt::mpi {
@@ -35,6 +36,9 @@ long max(long v);
 double max_real(double v);
 // Sum over the ranks.
 double sum_real(double v);
+// The lowest rank's non-empty `mine`, on every rank; empty when every rank's is (an error some
+// ranks met, which all then report alike).
+std::string first_text(const std::string& mine);
 // Each rank's `mine` concatenated in rank order, and (counts) how many each gave.
 template <class T>
 std::vector<T> all_gather(const std::vector<T>& mine, std::vector<int>* counts = nullptr);

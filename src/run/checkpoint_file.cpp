@@ -133,7 +133,7 @@ std::string read_checkpoint_piece(const std::string& path, const Deck& dk, std::
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
     refuse(path, "missing: the checkpoint keeps each rank's bond rows in a piece beside it, and "
-                 "a restart reads them all (copy the pieces with checkpoint.bin)");
+                 "a restart reads those with its rows (copy the pieces with checkpoint.bin)");
   Checkpoint c = read_checked(path, dk);
   if (fnv1a(c.payload) != sum)
     refuse(path, "this piece belongs to another checkpoint than the one beside it");

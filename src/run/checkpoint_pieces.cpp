@@ -34,12 +34,9 @@ BondPieces write_bond_pieces(const std::string& dir, const CheckpointInfo& info,
   } catch (const OutputError& e) {
     error = e.what();
   }
-  // Every rank stops when one could not write (rank 0 then records why in the summary).
-  const long failed = mpi::max(error.empty() ? -1L : static_cast<long>(mpi::rank()));
-  if (failed >= 0)
-    throw OutputError(error.empty() ? fmt::format("rank {} could not write its checkpoint piece "
-                                                  "into {}", failed, dir)
-                                    : error);
+  // Every rank stops when one could not write, with its error (rank 0 records it in the summary).
+  error = mpi::first_text(error);
+  if (!error.empty()) throw OutputError(error);
   BondPieces b;
   b.sums = mpi::gather_to_root(std::vector<std::uint64_t>{checkpoint_checksum(payload)});
   if (mpi::rank() == 0)

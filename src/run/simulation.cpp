@@ -158,11 +158,17 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
   if (opt.restart) {
     restart = read_checkpoint(*opt.restart, dk);
     state.emplace(restart->payload, restart->path);
+    std::optional<DeckError> failed;
     try {
       restore_model_state(*state, m, piece_reader(restart->path, dk));
     } catch (const ArchiveError& e) {
-      throw DeckError(restart->path, 0, 0, "--restart", e.what());
+      failed.emplace(restart->path, 0, 0, "--restart", e.what());
+    } catch (const DeckError& e) {
+      failed.emplace(e);
     }
+    // The ranks read different pieces: all stop, with the first error any met.
+    const std::string error = mpi::first_text(failed ? failed->what() : "");
+    if (!error.empty()) throw DeckError(DeckError::Formatted{}, error, "--restart");
     if (restart->info.threads != omp_get_max_threads() && !opt.quiet)
       fmt::print("note: the checkpoint was written with {} threads, this run has {}: it continues "
                  "correctly, but not bit for bit\n",
