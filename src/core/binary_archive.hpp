@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace periadapt {
@@ -55,6 +56,7 @@ class ArchiveWriter {
   }
   void tag(const char (&t)[5]) { buf_.append(t, 4); }
   const std::string& bytes() const { return buf_; }
+  std::string take() { return std::move(buf_); }
 
  private:
   std::string buf_;
@@ -98,6 +100,16 @@ class ArchiveReader {
   template <class T, std::size_t N>
   void get(std::array<std::vector<T>, N>& a) {
     for (auto& v : a) get(v);
+  }
+  // An array left where it is: its length and its first byte in the archive (unaligned: read
+  // its elements with memcpy), for a reader that copies parts of it elsewhere.
+  template <class T>
+  std::pair<const char*, std::uint64_t> view() {
+    static_assert(std::is_trivially_copyable_v<T>);
+    const std::uint64_t n = length(sizeof(T));
+    const char* p = buf_.data() + pos_;
+    pos_ += n * sizeof(T);
+    return {p, n};
   }
   template <class T>
   T get() {

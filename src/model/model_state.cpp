@@ -1,6 +1,9 @@
 #include "model/model_state.hpp"
 
 #include <algorithm>
+#include <cstring>
+#include <type_traits>
+#include <utility>
 #include <stdexcept>
 #include <string>
 
@@ -79,24 +82,27 @@ void check_offsets(const std::vector<std::uint64_t>& offsets, std::size_t n) {
   if (!ok) throw ArchiveError("the checkpoint's bond rows do not fit its nodes (corrupt)");
 }
 
-// Bond arrays that rows are copied from.
+// Bond arrays that rows are copied from, as bytes (an archive's, or a vector's) and lengths.
+using Bytes = std::pair<const char*, std::uint64_t>;
 struct RowSource {
-  const std::vector<std::uint32_t>& neighbor;
-  const std::vector<double>& inv_length;
-  const std::vector<float>& beta;
-  const std::vector<double>& state;
+  Bytes neighbor, inv_length, beta, state;
 };
+template <class T>
+Bytes bytes_of(const std::vector<T>& v) {
+  return {reinterpret_cast<const char*>(v.data()), v.size()};
+}
 // Row i, `len` bonds at `at` in the source, into its place in `to`.
 void copy_row(BondFamilies& to, std::size_t i, const RowSource& s, std::uint64_t at,
               std::uint64_t len, std::size_t n) {
   const std::uint64_t b = to.begin(i);
-  for (std::uint64_t q = 0; q < len; ++q)
-    if (s.neighbor[at + q] >= n)
-      throw ArchiveError("the checkpoint's bonds name a node it does not hold (corrupt)");
-  auto copy = [&](const auto& from, auto& into) {
-    std::copy_n(from.data() + at, len, into.data() + b);
+  auto copy = [&](const Bytes& from, auto& into) {
+    using T = typename std::decay_t<decltype(into)>::value_type;
+    if (len) std::memcpy(into.data() + b, from.first + at * sizeof(T), len * sizeof(T));
   };
   copy(s.neighbor, to.neighbor);
+  for (std::uint64_t q = b; q < b + len; ++q)
+    if (to.neighbor[q] >= n)
+      throw ArchiveError("the checkpoint's bonds name a node it does not hold (corrupt)");
   copy(s.inv_length, to.inv_length);
   copy(s.beta, to.beta);
   if (to.keeps_state) copy(s.state, to.state);
@@ -146,14 +152,11 @@ void read_pieces(ArchiveReader& r, BondFamilies& to, const std::vector<std::uint
     pr.tag("ROWS");
     if (pr.get<std::uint64_t>() != n)
       throw ArchiveError(files[k] + ": a piece of a model with another node count");
-    std::vector<std::uint32_t> rows, neighbor;
-    std::vector<double> inv_length, state;
-    std::vector<float> beta;
+    std::vector<std::uint32_t> rows;
     pr.get(rows);
-    pr.get(neighbor);
-    pr.get(inv_length);
-    pr.get(beta);
-    pr.get(state);
+    // The bond arrays stay in the payload: each row is copied from there.
+    const RowSource src{pr.view<std::uint32_t>(), pr.view<double>(), pr.view<float>(),
+                        pr.view<double>()};
     if (!pr.at_end()) throw ArchiveError(files[k] + ": data past the piece's rows (corrupt)");
     std::uint64_t total = 0;
     for (std::uint32_t i : rows) {
@@ -162,10 +165,9 @@ void read_pieces(ArchiveReader& r, BondFamilies& to, const std::vector<std::uint
       seen[i] = 1;
       total += offsets[i + 1] - offsets[i];
     }
-    if (neighbor.size() != total || inv_length.size() != total || beta.size() != total ||
-        state.size() != (to.keeps_state ? total : 0))
+    if (src.neighbor.second != total || src.inv_length.second != total ||
+        src.beta.second != total || src.state.second != (to.keeps_state ? total : 0))
       throw ArchiveError(files[k] + ": its bond arrays do not fit its rows (corrupt)");
-    const RowSource src{neighbor, inv_length, beta, state};
     std::uint64_t at = 0;
     for (std::uint32_t i : rows) {
       const std::uint64_t len = offsets[i + 1] - offsets[i];
@@ -202,7 +204,8 @@ void restore_bonds(ArchiveReader& r, Model& m, const PieceReader& read_piece) {
     if (!can_hold_rows(whole))
       throw ArchiveError("the checkpoint's bond rows differ from the model's (another model?)");
     check_held_layout(m, whole.offsets, whole.keeps_state);
-    const RowSource src{whole.neighbor, whole.inv_length, whole.beta, whole.state};
+    const RowSource src{bytes_of(whole.neighbor), bytes_of(whole.inv_length),
+                        bytes_of(whole.beta), bytes_of(whole.state)};
     for (std::size_t i = 0; i < n; ++i)
       if (holds_row(m.bonds, i))
         copy_row(m.bonds, i, src, whole.begin(i), whole.end(i) - whole.begin(i), n);
@@ -262,7 +265,7 @@ std::string bond_rows_piece(const Model& m) {
   rows_of(bf.beta, total);
   if (bf.keeps_state) rows_of(bf.state, total);
   else w.put(std::vector<double>{});
-  return w.bytes();
+  return w.take();
 }
 
 void save_model_state(ArchiveWriter& w, const Model& m, const BondPieces* pieces) {

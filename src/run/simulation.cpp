@@ -263,7 +263,7 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
     w.put(tot.solver_s);
     w.put(tot.sampling_s);
     w.put(view.output_seconds);
-    write_checkpoint(dir + "/" + kCheckpointName, info, w.bytes());
+    write_checkpoint(dir + "/" + kCheckpointName, info, w.take());
     remove_stale_pieces(dir, pieces);
   };
   auto restore_run_state = [&](ArchiveReader& r) {
@@ -286,6 +286,8 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
     } catch (const ArchiveError& e) {
       throw DeckError(restart->path, 0, 0, "--restart", e.what());
     }
+    state.reset();
+    std::string().swap(restart->payload);  // restored: the run does not keep the file's bytes
     tot.restarted = true;
     tot.restarted_from_step = vv.step_count();
     if (!opt.quiet)
