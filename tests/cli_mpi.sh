@@ -173,22 +173,23 @@ PY
       echo "FAIL $name: restart on 3 ranks: ${r:-$(tail -3 "$ck-restart.log")}"; fail=1
     fi
   fi
-  # Held rows checkpoint in pieces, one per rank, beside checkpoint.bin (the step-200 ones alone
-  # once the 3-rank restart wrote no checkpoint of its own); a serial run restarts from them, and
-  # a serial run's checkpoint restarts on 2 ranks that hold their rows.
+  # Held rows checkpoint in pieces, one per rank, beside checkpoint.bin (the last checkpoint's
+  # alone: the 3-rank restart wrote none); a piece missing, or one of another checkpoint, is
+  # refused (exit 2) naming it; a serial run restarts from them, and a serial run's checkpoint
+  # restarts on 2 ranks that hold their rows.
   if [[ $name == restart-held-* ]]; then
-    pieces=$(cd "$tmp/$name-ck" && ls checkpoint.rows.* 2> /dev/null | tr '\n' ' ')
-    if [[ $pieces == "checkpoint.rows.200.0-of-2.bin checkpoint.rows.200.1-of-2.bin " ]]; then
-      echo "ok   $name: the checkpoint's bond rows in pieces: $pieces"
-    else echo "FAIL $name: pieces beside the checkpoint: '$pieces'"; fail=1; fi
-    # A piece missing, or one of another checkpoint: the restart refuses (exit 2), naming it.
+    pieces=($(cd "$tmp/$name-ck" && ls checkpoint.rows.* 2> /dev/null))
+    step=${pieces[0]#checkpoint.rows.}; step=${step%%.*}
+    if [[ ${pieces[*]} == "checkpoint.rows.$step.0-of-2.bin checkpoint.rows.$step.1-of-2.bin" ]]; then
+      echo "ok   $name: the checkpoint's bond rows in pieces: ${pieces[*]}"
+    else echo "FAIL $name: pieces beside the checkpoint: '${pieces[*]}'"; fail=1; fi
     for bad in missing swapped; do
       cb="$tmp/$name-$bad"; cp -r "$tmp/$name-ck" "$cb"
-      if [[ $bad == missing ]]; then rm "$cb/checkpoint.rows.200.1-of-2.bin"
-      else cp "$cb/checkpoint.rows.200.0-of-2.bin" "$cb/checkpoint.rows.200.1-of-2.bin"; fi
+      if [[ $bad == missing ]]; then rm -f "$cb/${pieces[1]}"
+      else cp "$cb/${pieces[0]}" "$cb/${pieces[1]}"; fi
       mpirun -np 2 "$bin" run "$deck" --out "$cb" "${args[@]}" --restart "$cb" > "$cb.log" 2>&1; rc=$?
-      if [[ $rc -eq 2 ]] && grep -q "checkpoint.rows.200.1-of-2.bin" "$cb.log"; then
-        echo "ok   $name: a $bad piece refused: $(grep -m1 -o 'checkpoint.rows.200.1-of-2.bin.*' "$cb.log")"
+      if [[ $rc -eq 2 ]] && grep -q "${pieces[1]}" "$cb.log"; then
+        echo "ok   $name: a $bad piece refused: $(grep -m1 -o "${pieces[1]}.*" "$cb.log")"
       else echo "FAIL $name: a $bad piece: exit $rc: $(tail -2 "$cb.log")"; fail=1; fi
     done
     ck1="$tmp/$name-ck1"; ck2="$tmp/$name-ck2"

@@ -4,6 +4,8 @@
 // holds and any other split's held rows.
 #include <gtest/gtest.h>
 
+#include <cstring>
+#include <functional>
 #include <map>
 
 #include "input/deck_builder.hpp"
@@ -30,6 +32,26 @@ Model plate() {
                          .set("solver.steps", 1)
                          .build("held rows plate"));
 }
+
+// A piece's bytes read in order, as from its file.
+class StringStream final : public ArchiveStream {
+ public:
+  explicit StringStream(const std::string& b) : b_(b) {}
+  void read(void* to, std::size_t n) override {
+    if (n > left()) throw ArchiveError("past the end");
+    std::memcpy(to, b_.data() + at_, n);
+    at_ += n;
+  }
+  void skip(std::uint64_t n) override {
+    if (n > left()) throw ArchiveError("past the end");
+    at_ += n;
+  }
+  std::size_t left() const { return b_.size() - at_; }
+
+ private:
+  const std::string& b_;
+  std::size_t at_ = 0;
+};
 }  // namespace
 
 TEST(HeldRows, KeptRowsAreTheWholeRowsUnderTheBondNames) {
@@ -86,16 +108,24 @@ TEST(HeldRows, CheckpointPiecesRestoreWholeAndHeldRows) {
   };
   const Model even = held([](std::uint32_t i) { return i % 2 == 0; });
   const Model odd = held([](std::uint32_t i) { return i % 2 == 1; });
-  std::map<std::string, std::string> files = {{"checkpoint.rows.9.0-of-2.bin", bond_rows_piece(even)},
-                                              {"checkpoint.rows.9.1-of-2.bin", bond_rows_piece(odd)}};
+  auto piece = [](const Model& m) {
+    std::string bytes;
+    write_bond_rows_piece(m, [&](const char* p, std::size_t k) { bytes.append(p, k); });
+    return bytes;
+  };
+  std::map<std::string, std::string> files = {{"checkpoint.rows.9.0-of-2.bin", piece(even)},
+                                              {"checkpoint.rows.9.1-of-2.bin", piece(odd)}};
   const BondPieces pieces{{"checkpoint.rows.9.0-of-2.bin", "checkpoint.rows.9.1-of-2.bin"}, {11, 12}};
   ArchiveWriter w;
   save_model_state(w, even, &pieces);
   int reads = 0;
-  const PieceReader read = [&](const std::string& f, std::uint64_t sum) {
+  const PieceReader read = [&](const std::string& f, std::uint64_t sum,
+                               const std::function<void(ArchiveStream&)>& parse) {
     EXPECT_EQ(sum, f == pieces.files[0] ? 11u : 12u);
     ++reads;
-    return files.at(f);
+    StringStream s(files.at(f));
+    parse(s);
+    EXPECT_EQ(s.left(), 0u);
   };
 
   Model serial = plate();
@@ -152,7 +182,11 @@ TEST(HeldRows, CheckpointPiecesRestoreWholeAndHeldRows) {
   EXPECT_EQ(from_serial.bonds.state, third.bonds.state);
 
   // The same piece twice: its rows twice, the odd rows never.
-  const PieceReader twice = [&](const std::string&, std::uint64_t) { return files.begin()->second; };
+  const PieceReader twice = [&](const std::string&, std::uint64_t,
+                                const std::function<void(ArchiveStream&)>& parse) {
+    StringStream s(files.begin()->second);
+    parse(s);
+  };
   Model bad = plate();
   bad.bonds.enable_state();
   ArchiveReader rb(w.bytes(), "test");

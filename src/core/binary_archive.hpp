@@ -6,11 +6,11 @@
 #include <array>
 #include <cstdint>
 #include <cstring>
+#include <functional>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
-#include <utility>
 #include <vector>
 
 namespace periadapt {
@@ -18,6 +18,25 @@ namespace periadapt {
 class ArchiveError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
+};
+
+// Bytes put out in parts (a large payload written without a copy of it in memory).
+using ArchiveSink = std::function<void(const char* data, std::size_t n)>;
+
+// An archive read in order from elsewhere (a file too large to hold twice): bytes read or skipped.
+class ArchiveStream {
+ public:
+  virtual ~ArchiveStream() = default;
+  // Throws ArchiveError past the end.
+  virtual void read(void* to, std::size_t n) = 0;
+  virtual void skip(std::uint64_t n) = 0;
+  template <class T>
+  T get() {
+    static_assert(std::is_trivially_copyable_v<T>);
+    T v{};
+    read(&v, sizeof v);
+    return v;
+  }
 };
 
 class ArchiveWriter {
@@ -46,13 +65,6 @@ class ArchiveWriter {
   template <class T, std::size_t N>
   void put(const std::array<std::vector<T>, N>& a) {
     for (const auto& v : a) put(v);
-  }
-  // An array written in slices: put its length (std::uint64_t), then append slices adding up
-  // to it; it reads back as one vector.
-  template <class T>
-  void append(const T* data, std::size_t n) {
-    static_assert(std::is_trivially_copyable_v<T>);
-    buf_.append(reinterpret_cast<const char*>(data), n * sizeof(T));
   }
   void tag(const char (&t)[5]) { buf_.append(t, 4); }
   const std::string& bytes() const { return buf_; }
@@ -100,16 +112,6 @@ class ArchiveReader {
   template <class T, std::size_t N>
   void get(std::array<std::vector<T>, N>& a) {
     for (auto& v : a) get(v);
-  }
-  // An array left where it is: its length and its first byte in the archive (unaligned: read
-  // its elements with memcpy), for a reader that copies parts of it elsewhere.
-  template <class T>
-  std::pair<const char*, std::uint64_t> view() {
-    static_assert(std::is_trivially_copyable_v<T>);
-    const std::uint64_t n = length(sizeof(T));
-    const char* p = buf_.data() + pos_;
-    pos_ += n * sizeof(T);
-    return {p, n};
   }
   template <class T>
   T get() {

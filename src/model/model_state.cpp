@@ -82,32 +82,6 @@ void check_offsets(const std::vector<std::uint64_t>& offsets, std::size_t n) {
   if (!ok) throw ArchiveError("the checkpoint's bond rows do not fit its nodes (corrupt)");
 }
 
-// Bond arrays that rows are copied from, as bytes (an archive's, or a vector's) and lengths.
-using Bytes = std::pair<const char*, std::uint64_t>;
-struct RowSource {
-  Bytes neighbor, inv_length, beta, state;
-};
-template <class T>
-Bytes bytes_of(const std::vector<T>& v) {
-  return {reinterpret_cast<const char*>(v.data()), v.size()};
-}
-// Row i, `len` bonds at `at` in the source, into its place in `to`.
-void copy_row(BondFamilies& to, std::size_t i, const RowSource& s, std::uint64_t at,
-              std::uint64_t len, std::size_t n) {
-  const std::uint64_t b = to.begin(i);
-  auto copy = [&](const Bytes& from, auto& into) {
-    using T = typename std::decay_t<decltype(into)>::value_type;
-    if (len) std::memcpy(into.data() + b, from.first + at * sizeof(T), len * sizeof(T));
-  };
-  copy(s.neighbor, to.neighbor);
-  for (std::uint64_t q = b; q < b + len; ++q)
-    if (to.neighbor[q] >= n)
-      throw ArchiveError("the checkpoint's bonds name a node it does not hold (corrupt)");
-  copy(s.inv_length, to.inv_length);
-  copy(s.beta, to.beta);
-  if (to.keeps_state) copy(s.state, to.state);
-}
-
 // Whether held arrays take row i: they hold it (each held row is as long as the whole row, the
 // others are empty).
 bool holds_row(const BondFamilies& to, std::size_t i) { return to.end(i) > to.begin(i); }
@@ -147,33 +121,45 @@ void read_pieces(ArchiveReader& r, BondFamilies& to, const std::vector<std::uint
   std::vector<char> seen(n, 0);
   for (std::size_t k = 0; k < count; ++k) {
     if (!wanted[k]) continue;
-    const std::string payload = read_piece(files[k], sums[k]);
-    ArchiveReader pr(payload, files[k]);
-    pr.tag("ROWS");
-    if (pr.get<std::uint64_t>() != n)
-      throw ArchiveError(files[k] + ": a piece of a model with another node count");
-    std::vector<std::uint32_t> rows;
-    pr.get(rows);
-    // The bond arrays stay in the payload: each row is copied from there.
-    const RowSource src{pr.view<std::uint32_t>(), pr.view<double>(), pr.view<float>(),
-                        pr.view<double>()};
-    if (!pr.at_end()) throw ArchiveError(files[k] + ": data past the piece's rows (corrupt)");
-    std::uint64_t total = 0;
-    for (std::uint32_t i : rows) {
-      if (i >= n || seen[i] || static_cast<std::size_t>(piece_of[i]) != k)
-        throw ArchiveError(files[k] + ": names a row of another piece (corrupt)");
-      seen[i] = 1;
-      total += offsets[i + 1] - offsets[i];
-    }
-    if (src.neighbor.second != total || src.inv_length.second != total ||
-        src.beta.second != total || src.state.second != (to.keeps_state ? total : 0))
-      throw ArchiveError(files[k] + ": its bond arrays do not fit its rows (corrupt)");
-    std::uint64_t at = 0;
-    for (std::uint32_t i : rows) {
-      const std::uint64_t len = offsets[i + 1] - offsets[i];
-      if (whole || holds_row(to, i)) copy_row(to, i, src, at, len, n);
-      at += len;
-    }
+    read_piece(files[k], sums[k], [&](ArchiveStream& s) {
+      char tag[4];
+      s.read(tag, sizeof tag);
+      if (std::memcmp(tag, "ROWS", 4) != 0) throw ArchiveError(files[k] + ": not a bond piece");
+      if (s.get<std::uint64_t>() != n)
+        throw ArchiveError(files[k] + ": a piece of a model with another node count");
+      const auto count_rows = s.get<std::uint64_t>();
+      if (count_rows > n) throw ArchiveError(files[k] + ": more rows than the model (corrupt)");
+      std::vector<std::uint32_t> rows(count_rows);
+      s.read(rows.data(), rows.size() * sizeof(std::uint32_t));
+      std::uint64_t total = 0;
+      for (std::uint32_t i : rows) {
+        if (i >= n || seen[i] || static_cast<std::size_t>(piece_of[i]) != k)
+          throw ArchiveError(files[k] + ": names a row of another piece (corrupt)");
+        seen[i] = 1;
+        total += offsets[i + 1] - offsets[i];
+      }
+      // Each array row by row: into its place where `to` takes the row, skipped where not.
+      auto array = [&](auto& into, bool present) {
+        using T = typename std::decay_t<decltype(into)>::value_type;
+        if (s.get<std::uint64_t>() != (present ? total : 0))
+          throw ArchiveError(files[k] + ": its bond arrays do not fit its rows (corrupt)");
+        if (!present) return;
+        for (std::uint32_t i : rows) {
+          const std::uint64_t len = offsets[i + 1] - offsets[i];
+          if (whole || holds_row(to, i)) s.read(into.data() + to.begin(i), len * sizeof(T));
+          else s.skip(len * sizeof(T));
+        }
+      };
+      array(to.neighbor, true);
+      array(to.inv_length, true);
+      array(to.beta, true);
+      array(to.state, to.keeps_state);
+      for (std::uint32_t i : rows)
+        if (whole || holds_row(to, i))
+          for (std::uint64_t q = to.begin(i); q < to.end(i); ++q)
+            if (to.neighbor[q] >= n)
+              throw ArchiveError(files[k] + ": a bond names a node the model lacks (corrupt)");
+    });
   }
   for (std::size_t i = 0; i < n; ++i)
     if (!seen[i] && wanted[static_cast<std::size_t>(piece_of[i])])
@@ -204,11 +190,18 @@ void restore_bonds(ArchiveReader& r, Model& m, const PieceReader& read_piece) {
     if (!can_hold_rows(whole))
       throw ArchiveError("the checkpoint's bond rows differ from the model's (another model?)");
     check_held_layout(m, whole.offsets, whole.keeps_state);
-    const RowSource src{bytes_of(whole.neighbor), bytes_of(whole.inv_length),
-                        bytes_of(whole.beta), bytes_of(whole.state)};
-    for (std::size_t i = 0; i < n; ++i)
-      if (holds_row(m.bonds, i))
-        copy_row(m.bonds, i, src, whole.begin(i), whole.end(i) - whole.begin(i), n);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!holds_row(m.bonds, i)) continue;
+      auto copy = [&](const auto& from, auto& into) {
+        std::copy(from.begin() + static_cast<std::ptrdiff_t>(whole.begin(i)),
+                  from.begin() + static_cast<std::ptrdiff_t>(whole.end(i)),
+                  into.begin() + static_cast<std::ptrdiff_t>(m.bonds.begin(i)));
+      };
+      copy(whole.neighbor, m.bonds.neighbor);
+      copy(whole.inv_length, m.bonds.inv_length);
+      copy(whole.beta, m.bonds.beta);
+      if (whole.keeps_state) copy(whole.state, m.bonds.state);
+    }
     m.partition.whole_capacity = room;
     return;
   }
@@ -247,25 +240,27 @@ void restore_bonds(ArchiveReader& r, Model& m, const PieceReader& read_piece) {
 }
 }  // namespace
 
-std::string bond_rows_piece(const Model& m) {
+void write_bond_rows_piece(const Model& m, const ArchiveSink& out) {
   const RowPartition& p = m.partition;
   const BondFamilies& bf = m.bonds;
+  auto value = [&](std::uint64_t v) { out(reinterpret_cast<const char*>(&v), sizeof v); };
   std::uint64_t total = 0;
   for (std::uint32_t i : p.owned) total += bf.end(i) - bf.begin(i);
-  ArchiveWriter w;
-  w.tag("ROWS");
-  w.put(std::uint64_t{bf.num_nodes()});
-  w.put(p.owned);
-  auto rows_of = [&](const auto& a, std::uint64_t length) {
-    w.put(length);
-    for (std::uint32_t i : p.owned) w.append(a.data() + bf.begin(i), bf.end(i) - bf.begin(i));
+  out("ROWS", 4);
+  value(bf.num_nodes());
+  value(p.owned.size());
+  out(reinterpret_cast<const char*>(p.owned.data()), p.owned.size() * sizeof(std::uint32_t));
+  auto rows_of = [&](const auto& a, bool present) {
+    using T = typename std::decay_t<decltype(a)>::value_type;
+    value(present ? total : 0);
+    if (!present) return;
+    for (std::uint32_t i : p.owned)
+      out(reinterpret_cast<const char*>(a.data() + bf.begin(i)), (bf.end(i) - bf.begin(i)) * sizeof(T));
   };
-  rows_of(bf.neighbor, total);
-  rows_of(bf.inv_length, total);
-  rows_of(bf.beta, total);
-  if (bf.keeps_state) rows_of(bf.state, total);
-  else w.put(std::vector<double>{});
-  return w.take();
+  rows_of(bf.neighbor, true);
+  rows_of(bf.inv_length, true);
+  rows_of(bf.beta, true);
+  rows_of(bf.state, bf.keeps_state);
 }
 
 void save_model_state(ArchiveWriter& w, const Model& m, const BondPieces* pieces) {

@@ -21,10 +21,12 @@ struct BondPieces {
   std::vector<std::string> files;
   std::vector<std::uint64_t> sums;
 };
-// This rank's own rows of held bond arrays: the payload of its piece.
-std::string bond_rows_piece(const Model& m);
-// A piece's payload, by the name and checksum the checkpoint gave (checked by the reader).
-using PieceReader = std::function<std::string(const std::string& file, std::uint64_t sum)>;
+// This rank's own rows of held bond arrays: the payload of its piece, put out in parts.
+void write_bond_rows_piece(const Model& m, const ArchiveSink& out);
+// Opens a piece by the name and checksum the checkpoint gave and lets `parse` read its payload
+// (the reader checks the checksum).
+using PieceReader = std::function<void(const std::string& file, std::uint64_t sum,
+                                       const std::function<void(ArchiveStream&)>& parse)>;
 
 // With held rows, `pieces` names the pieces the ranks wrote.
 void save_model_state(ArchiveWriter& w, const Model& m, const BondPieces* pieces = nullptr);

@@ -2,14 +2,16 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
+#include <array>
 #include <cstring>
 #include <filesystem>
+#include <stdexcept>
 #include <fstream>
-#include <sstream>
 
-#include "io/atomic_output.hpp"
 #include "core/binary_archive.hpp"
 #include "input/deck_error.hpp"
+#include "io/atomic_output.hpp"
 
 #ifndef PERIADAPT_BUILD_ID
 #define PERIADAPT_BUILD_ID "unknown"
@@ -21,22 +23,128 @@ namespace {
 constexpr char kMagic[] = "PERIADAPT CHECKPOINT\n";
 constexpr std::size_t kMagicSize = sizeof(kMagic) - 1;
 
-std::uint64_t fnv1a(const std::string& s) {
+// FNV-1a over bytes that may arrive in parts.
+struct Fnv1a {
   std::uint64_t h = 14695981039346656037ull;
-  for (unsigned char c : s) h = (h ^ c) * 1099511628211ull;
-  return h;
+  void add(const char* p, std::size_t n) {
+    for (std::size_t k = 0; k < n; ++k) h = (h ^ static_cast<unsigned char>(p[k])) * 1099511628211ull;
+  }
+};
+std::uint64_t fnv1a(const std::string& s) {
+  Fnv1a f;
+  f.add(s.data(), s.size());
+  return f.h;
 }
 
 [[noreturn]] void refuse(const std::string& path, const std::string& what) {
   throw DeckError(path, 0, 0, "--restart", what);
 }
+
+// A checkpoint file's header, read from the start of `in` and checked against this build and
+// deck; leaves `in` at the payload.
+struct Header {
+  CheckpointInfo info;
+  std::uint64_t payload_size = 0, sum = 0;
+};
+Header read_header(std::istream& in, const std::string& path, const Deck& dk) {
+  in.seekg(0, std::ios::end);
+  const std::streamoff file_size = in ? static_cast<std::streamoff>(in.tellg()) : -1;
+  in.seekg(0);
+  if (file_size < 0 || !in) refuse(path, "cannot read the file");
+  auto bytes = [&](std::size_t n, const char* what) {
+    std::string s(n, '\0');
+    if (!in.read(s.data(), static_cast<std::streamsize>(n)))
+      refuse(path, fmt::format("ends inside its {} (truncated or corrupt)", what));
+    return s;
+  };
+  auto value = [&](const char* what) {
+    std::uint64_t v = 0;
+    std::memcpy(&v, bytes(sizeof v, what).data(), sizeof v);
+    return v;
+  };
+  if (file_size < static_cast<std::streamoff>(kMagicSize) || bytes(kMagicSize, "header") != kMagic)
+    refuse(path, "not a PeriAdapt checkpoint (no header)");
+  std::uint32_t format = 0;
+  std::memcpy(&format, bytes(sizeof format, "header").data(), sizeof format);
+  if (format != kCheckpointFormat)
+    refuse(path, fmt::format("checkpoint format {}; this build reads format {}", format,
+                             kCheckpointFormat));
+  const std::uint64_t hsize = value("header");
+  if (hsize > static_cast<std::uint64_t>(file_size)) refuse(path, "header length out of range (corrupt)");
+  const std::string head = bytes(hsize, "header");
+  Header h;
+  try {
+    ArchiveReader r(head, path);
+    r.get(h.info.build);
+    r.get(h.info.deck);
+    r.get(h.info.deck_file);
+    r.get(h.info.threads);
+    r.get(h.info.step);
+    r.get(h.info.time);
+  } catch (const ArchiveError& e) {
+    refuse(path, e.what());
+  }
+  h.payload_size = value("header");
+  h.sum = value("header");
+  const auto left = static_cast<std::uint64_t>(file_size - static_cast<std::streamoff>(in.tellg()));
+  if (left != h.payload_size)
+    refuse(path, fmt::format("the payload holds {} bytes, the header says {} (truncated or corrupt)",
+                             left, h.payload_size));
+  if (h.info.build != build_id())
+    refuse(path, fmt::format("written by build '{}', this is '{}': a restart continues bit for "
+                             "bit only with the program that wrote it",
+                             h.info.build, build_id()));
+  if (h.info.deck != deck_fingerprint(dk))
+    refuse(path, fmt::format("written for another deck ({}); only output settings, "
+                             "solver.end_time and solver.steps may change on a restart",
+                             h.info.deck_file));
+  return h;
+}
+
+// A payload read from its file in order, its checksum taken on the way.
+class FileStream final : public ArchiveStream {
+ public:
+  FileStream(std::istream& in, std::uint64_t size, std::string path)
+      : in_(in), left_(size), path_(std::move(path)) {}
+  void read(void* to, std::size_t n) override {
+    if (n > left_)
+      throw ArchiveError(path_ + ": ends inside its data (truncated or corrupt)");
+    if (n && !in_.read(static_cast<char*>(to), static_cast<std::streamsize>(n)))
+      throw ArchiveError(path_ + ": cannot read the file");
+    sum_.add(static_cast<const char*>(to), n);
+    left_ -= n;
+  }
+  void skip(std::uint64_t n) override {
+    std::array<char, 1 << 16> buf;
+    while (n > 0) {
+      const std::size_t k = static_cast<std::size_t>(std::min<std::uint64_t>(n, buf.size()));
+      read(buf.data(), k);
+      n -= k;
+    }
+  }
+  std::uint64_t left() const { return left_; }
+  std::uint64_t sum() const { return sum_.h; }
+
+ private:
+  std::istream& in_;
+  std::uint64_t left_;
+  std::string path_;
+  Fnv1a sum_;
+};
 }  // namespace
 
 std::string build_id() { return PERIADAPT_BUILD_ID; }
 
 std::string deck_fingerprint(const Deck& dk) { return fmt::format("{:016x}", fnv1a(dk.physics_text)); }
 
-void write_checkpoint(const std::string& path, const CheckpointInfo& info, const std::string& payload) {
+std::uint64_t write_checkpoint_parts(const std::string& path, const CheckpointInfo& info,
+                                     const PayloadProducer& produce) {
+  Fnv1a sum;
+  std::uint64_t size = 0;
+  produce([&](const char* p, std::size_t n) {
+    sum.add(p, n);
+    size += n;
+  });
   ArchiveWriter head;
   head.put(info.build);
   head.put(info.deck);
@@ -44,100 +152,61 @@ void write_checkpoint(const std::string& path, const CheckpointInfo& info, const
   head.put(info.threads);
   head.put(info.step);
   head.put(info.time);
+  std::uint64_t written = 0;
   write_file_atomically(path, [&](std::ostream& o) {
     o.write(kMagic, kMagicSize);
     const std::uint32_t format = kCheckpointFormat;
-    const std::uint64_t hsize = head.bytes().size(), psize = payload.size(), sum = fnv1a(payload);
+    const std::uint64_t hsize = head.bytes().size();
     o.write(reinterpret_cast<const char*>(&format), sizeof format);
     o.write(reinterpret_cast<const char*>(&hsize), sizeof hsize);
     o << head.bytes();
-    o.write(reinterpret_cast<const char*>(&psize), sizeof psize);
-    o.write(reinterpret_cast<const char*>(&sum), sizeof sum);
-    o << payload;
+    o.write(reinterpret_cast<const char*>(&size), sizeof size);
+    o.write(reinterpret_cast<const char*>(&sum.h), sizeof sum.h);
+    produce([&](const char* p, std::size_t n) {
+      o.write(p, static_cast<std::streamsize>(n));
+      written += n;
+    });
+    if (written != size) throw std::logic_error("a checkpoint payload that changed while written");
   }, true);
+  return sum.h;
 }
 
-namespace {
-// The checks every checkpoint file passes: header, format, length, checksum, build and deck.
-Checkpoint read_checked(const std::string& path, const Deck& dk) {
-  Checkpoint c;
-  c.path = path;
-  std::ifstream in(c.path, std::ios::binary | std::ios::ate);
-  const std::streamoff size = in ? static_cast<std::streamoff>(in.tellg()) : -1;
-  if (size < 0) refuse(c.path, "cannot read the file");
-  std::string bytes(static_cast<std::size_t>(size), '\0');
-  in.seekg(0);
-  if (!in.read(bytes.data(), size)) refuse(c.path, "cannot read the file");
-  if (bytes.size() < kMagicSize || bytes.compare(0, kMagicSize, kMagic) != 0)
-    refuse(c.path, "not a PeriAdapt checkpoint (no header)");
-  try {
-    // The header's fields after the magic: format, header, payload size, checksum, payload.
-    // (The file's bytes become the payload in place: a restart holds one copy of it.)
-    std::string rest = std::move(bytes);
-    rest.erase(0, kMagicSize);
-    ArchiveReader r(rest, c.path);
-    const auto format = r.get<std::uint32_t>();
-    if (format != kCheckpointFormat)
-      refuse(c.path, fmt::format("checkpoint format {}; this build reads format {}", format,
-                                 kCheckpointFormat));
-    std::string head;
-    r.get(head);
-    ArchiveReader h(head, c.path);
-    h.get(c.info.build);
-    h.get(c.info.deck);
-    h.get(c.info.deck_file);
-    h.get(c.info.threads);
-    h.get(c.info.step);
-    h.get(c.info.time);
-    const auto sum = [&] {
-      std::uint64_t size = 0, s = 0;
-      r.get(size);
-      r.get(s);
-      if (rest.size() - r.position() != size)
-        refuse(c.path, fmt::format("the payload holds {} bytes, the header says {} (truncated "
-                                   "or corrupt)", rest.size() - r.position(), size));
-      return s;
-    }();
-    rest.erase(0, r.position());
-    c.payload = std::move(rest);
-    if (fnv1a(c.payload) != sum) refuse(c.path, "checksum mismatch: the file is corrupt");
-  } catch (const ArchiveError& e) {
-    refuse(c.path, e.what());
-  }
-  if (c.info.build != build_id())
-    refuse(c.path, fmt::format("written by build '{}', this is '{}': a restart continues bit for "
-                               "bit only with the program that wrote it",
-                               c.info.build, build_id()));
-  if (c.info.deck != deck_fingerprint(dk))
-    refuse(c.path, fmt::format("written for another deck ({}); only output settings, "
-                               "solver.end_time and solver.steps may change on a restart",
-                               c.info.deck_file));
-  return c;
+void write_checkpoint(const std::string& path, const CheckpointInfo& info, const std::string& payload) {
+  write_checkpoint_parts(path, info,
+                         [&](const ArchiveSink& out) { out(payload.data(), payload.size()); });
 }
-}  // namespace
 
 Checkpoint read_checkpoint(const std::string& path_or_dir, const Deck& dk) {
   namespace fs = std::filesystem;
   std::error_code ec;
-  const std::string path =
-      fs::is_directory(path_or_dir, ec) ? path_or_dir + "/" + kCheckpointName : path_or_dir;
-  if (!fs::is_regular_file(path, ec))
-    refuse(path, "no checkpoint here (a run writes checkpoint.bin into its output folder every "
-                 "output.checkpoint_every steps and when stopped by SIGINT or SIGTERM)");
-  return read_checked(path, dk);
+  Checkpoint c;
+  c.path = fs::is_directory(path_or_dir, ec) ? path_or_dir + "/" + kCheckpointName : path_or_dir;
+  if (!fs::is_regular_file(c.path, ec))
+    refuse(c.path, "no checkpoint here (a run writes checkpoint.bin into its output folder every "
+                   "output.checkpoint_every steps and when stopped by SIGINT or SIGTERM)");
+  std::ifstream in(c.path, std::ios::binary);
+  const Header h = read_header(in, c.path, dk);
+  c.info = h.info;
+  c.payload.resize(h.payload_size);
+  if (!in.read(c.payload.data(), static_cast<std::streamsize>(h.payload_size)))
+    refuse(c.path, "cannot read the file");
+  if (fnv1a(c.payload) != h.sum) refuse(c.path, "checksum mismatch: the file is corrupt");
+  return c;
 }
 
-std::uint64_t checkpoint_checksum(const std::string& payload) { return fnv1a(payload); }
-
-std::string read_checkpoint_piece(const std::string& path, const Deck& dk, std::uint64_t sum) {
+void read_checkpoint_piece(const std::string& path, const Deck& dk, std::uint64_t sum,
+                           const std::function<void(ArchiveStream&)>& parse) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
     refuse(path, "missing: the checkpoint keeps each rank's bond rows in a piece beside it, and "
                  "a restart reads those with its rows (copy the pieces with checkpoint.bin)");
-  Checkpoint c = read_checked(path, dk);
-  if (fnv1a(c.payload) != sum)
-    refuse(path, "this piece belongs to another checkpoint than the one beside it");
-  return std::move(c.payload);
+  std::ifstream in(path, std::ios::binary);
+  const Header h = read_header(in, path, dk);
+  if (h.sum != sum) refuse(path, "this piece belongs to another checkpoint than the one beside it");
+  FileStream s(in, h.payload_size, path);
+  parse(s);
+  if (s.left() != 0) refuse(path, "data past the piece's rows (corrupt)");
+  if (s.sum() != sum) refuse(path, "checksum mismatch: the file is corrupt");
 }
 
 }  // namespace periadapt

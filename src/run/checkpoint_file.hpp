@@ -2,7 +2,11 @@
 // The checkpoint file: a versioned header (magic, format, build, deck fingerprint, step) and a
 // payload checked by length and checksum. Written through a temporary name, so the previous
 // checkpoint stays intact until the new one is complete (a killed run restarts from it).
+#include <cstdint>
+#include <functional>
 #include <string>
+
+#include "core/binary_archive.hpp"
 
 #include "input/deck.hpp"
 
@@ -36,12 +40,18 @@ struct Checkpoint {
 };
 Checkpoint read_checkpoint(const std::string& path_or_dir, const Deck& dk);
 
-// The checksum a checkpoint file carries for its payload (a checkpoint records its pieces' too).
-std::uint64_t checkpoint_checksum(const std::string& payload);
+// A payload written in parts (a rank's bond rows, without a copy of them in memory): the producer
+// puts the payload through the sink, and runs twice (size and checksum, then the file). Returns
+// the checksum (a checkpoint records its pieces').
+using PayloadProducer = std::function<void(const ArchiveSink&)>;
+std::uint64_t write_checkpoint_parts(const std::string& path, const CheckpointInfo& info,
+                                     const PayloadProducer& produce);
 
 // A piece written beside a checkpoint (one rank's bond rows): checked as a checkpoint is, and
-// against the checksum the checkpoint recorded for it, so a piece of another checkpoint is
-// refused. Returns its payload; throws DeckError (key --restart).
-std::string read_checkpoint_piece(const std::string& path, const Deck& dk, std::uint64_t sum);
+// against the checksum the checkpoint recorded for it (a piece of another checkpoint is refused
+// before `parse` reads it); `parse` reads its payload in order, and the checksum of what it read
+// is checked after. Throws DeckError (key --restart), or ArchiveError from `parse`.
+void read_checkpoint_piece(const std::string& path, const Deck& dk, std::uint64_t sum,
+                           const std::function<void(ArchiveStream&)>& parse);
 
 }  // namespace periadapt

@@ -27,10 +27,11 @@ bool is_checkpoint_piece(const std::string& f) {
 }
 
 BondPieces write_bond_pieces(const std::string& dir, const CheckpointInfo& info, const Model& m) {
-  const std::string payload = bond_rows_piece(m);
   std::string error;
+  std::uint64_t sum = 0;
   try {
-    write_checkpoint(dir + "/" + piece_name(info.step, mpi::rank(), mpi::size()), info, payload);
+    sum = write_checkpoint_parts(dir + "/" + piece_name(info.step, mpi::rank(), mpi::size()), info,
+                                 [&](const ArchiveSink& out) { write_bond_rows_piece(m, out); });
   } catch (const OutputError& e) {
     error = e.what();
   }
@@ -38,7 +39,7 @@ BondPieces write_bond_pieces(const std::string& dir, const CheckpointInfo& info,
   error = mpi::first_text(error);
   if (!error.empty()) throw OutputError(error);
   BondPieces b;
-  b.sums = mpi::gather_to_root(std::vector<std::uint64_t>{checkpoint_checksum(payload)});
+  b.sums = mpi::gather_to_root(std::vector<std::uint64_t>{sum});
   if (mpi::rank() == 0)
     for (int r = 0; r < mpi::size(); ++r) b.files.push_back(piece_name(info.step, r, mpi::size()));
   return b;
@@ -57,12 +58,13 @@ void remove_stale_pieces(const std::string& dir, const BondPieces& named) {
 
 PieceReader piece_reader(const std::string& checkpoint_path, const Deck& dk) {
   const std::string dir = std::filesystem::path(checkpoint_path).parent_path().string();
-  return [dir, &dk, checkpoint_path](const std::string& file, std::uint64_t sum) {
+  return [dir, &dk, checkpoint_path](const std::string& file, std::uint64_t sum,
+                                     const std::function<void(ArchiveStream&)>& parse) {
     // Names from the checkpoint: plain piece names in its folder, nothing else.
     if (!is_checkpoint_piece(file) || file.find('/') != std::string::npos)
       throw DeckError(checkpoint_path, 0, 0, "--restart",
                       "names a bond piece '" + file + "' that is no piece's name (corrupt)");
-    return read_checkpoint_piece((dir.empty() ? std::string(".") : dir) + "/" + file, dk, sum);
+    read_checkpoint_piece((dir.empty() ? std::string(".") : dir) + "/" + file, dk, sum, parse);
   };
 }
 
