@@ -5,7 +5,8 @@
 # every rank holding the whole model (solver.owned_integration false); then held rows writing a
 # checkpoint at step 10 (each rank its rows' piece), and that checkpoint restarted on as many
 # ranks. Prints rank 0's model arrays (summary.json memory.model_bytes), its peak resident memory
-# and its resident memory at the end, in MB, and the held runs' peaks over the 1-rank run's.
+# and its resident memory at the end, the largest peak over the ranks, in MB, and the held runs'
+# rank-0 peaks over the 1-rank run's.
 #   [PERIADAPT=path/to/periadapt] bash bench/mpi_memory.sh [DECK]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -24,11 +25,13 @@ row() {  # label owned extra-args launcher words...
 import json, sys
 j = json.load(open(sys.argv[1])); m = j["memory"]; r = j.get("ranks", {})
 held = r.get("bond_rows_rank0")
+largest = m.get("peak_rss_largest_rank_bytes", m["peak_rss_bytes"])
 print(f"{sys.argv[2]:<22} {m['model_bytes'] / 1e6:9.1f} {m['peak_rss_bytes'] / 1e6:9.1f} "
-      f"{m['rss_end_bytes'] / 1e6:9.1f}  {held if held is not None else j['nodes']['slots']}")
+      f"{m['rss_end_bytes'] / 1e6:9.1f} {largest / 1e6:9.1f}  "
+      f"{held if held is not None else j['nodes']['slots']}")
 PY
 }
-echo "run                    model MB   peak MB    end MB  bond rows (rank 0)"
+echo "run                    model MB   peak MB    end MB  peak any  bond rows (rank 0)"
 one=$(OMP_NUM_THREADS=1 row "1 rank" true "" env); echo "$one"
 for np in 2 4; do
   mpi=(mpirun -np "$np" -x OMP_NUM_THREADS=1)

@@ -27,17 +27,23 @@ bool is_checkpoint_piece(const std::string& f) {
 }
 
 BondPieces write_bond_pieces(const std::string& dir, const CheckpointInfo& info, const Model& m) {
+  const std::string path = dir + "/" + piece_name(info.step, mpi::rank(), mpi::size());
   std::string error;
   std::uint64_t sum = 0;
   try {
-    sum = write_checkpoint_parts(dir + "/" + piece_name(info.step, mpi::rank(), mpi::size()), info,
+    sum = write_checkpoint_parts(path, info,
                                  [&](const ArchiveSink& out) { write_bond_rows_piece(m, out); });
   } catch (const OutputError& e) {
     error = e.what();
   }
-  // Every rank stops when one could not write, with its error (rank 0 records it in the summary).
+  // Every rank stops when one could not write, with its error (rank 0 records it in the
+  // summary); the pieces written belong to no checkpoint and go.
   error = mpi::first_text(error);
-  if (!error.empty()) throw OutputError(error);
+  if (!error.empty()) {
+    std::error_code ec;
+    std::filesystem::remove(path, ec);
+    throw OutputError(error);
+  }
   BondPieces b;
   b.sums = mpi::gather_to_root(std::vector<std::uint64_t>{sum});
   if (mpi::rank() == 0)

@@ -113,6 +113,11 @@ void SummaryObserver::finish(RunView& view, RunResult& res) {
                                                            sizeof(std::uint64_t))},
                    {"peak_rss_bytes", peak_rss_bytes()},
                    {"rss_end_bytes", current_rss_bytes()}};
+    // The rank that needs the most memory sizes a job's request (collective: every rank ends
+    // its run here).
+    if (mpi::distributed())
+      j["memory"]["peak_rss_largest_rank_bytes"] =
+          mpi::max_real(static_cast<double>(peak_rss_bytes()));
     j["family_build_time_s"] = m.family_build_seconds;
     j["family_build_in_steps"] = step_s > 0 ? m.family_build_seconds / step_s : 0.0;
   }
