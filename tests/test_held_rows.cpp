@@ -115,7 +115,8 @@ TEST(HeldRows, CheckpointPiecesRestoreWholeAndHeldRows) {
   };
   std::map<std::string, std::string> files = {{"checkpoint.rows.9.0-of-2.bin", piece(even)},
                                               {"checkpoint.rows.9.1-of-2.bin", piece(odd)}};
-  const BondPieces pieces{{"checkpoint.rows.9.0-of-2.bin", "checkpoint.rows.9.1-of-2.bin"}, {11, 12}};
+  const BondPieces pieces{{"checkpoint.rows.9.0-of-2.bin", "checkpoint.rows.9.1-of-2.bin"},
+                          {11, 12}};
   ArchiveWriter w;
   save_model_state(w, even, &pieces);
   int reads = 0;

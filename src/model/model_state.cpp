@@ -88,7 +88,8 @@ bool holds_row(const BondFamilies& to, std::size_t i) { return to.end(i) > to.be
 
 // The whole model's rows as the checkpoint records them, against the held rows built for this
 // run (the same deck and no refinement: the same rows).
-void check_held_layout(const Model& m, const std::vector<std::uint64_t>& offsets, bool keeps_state) {
+void check_held_layout(const Model& m, const std::vector<std::uint64_t>& offsets,
+                       bool keeps_state) {
   if (offsets != m.partition.whole_offsets)
     throw ArchiveError("the checkpoint's bond rows differ from the model's (another model?)");
   if (keeps_state != m.bonds.keeps_state)
@@ -107,10 +108,12 @@ void read_pieces(ArchiveReader& r, BondFamilies& to, const std::vector<std::uint
   for (std::string& f : files) r.get(f);
   std::vector<std::uint64_t> sums;
   r.get(sums);
-  if (sums.size() != count) throw ArchiveError("the checkpoint's bond pieces lack checksums (corrupt)");
+  if (sums.size() != count)
+    throw ArchiveError("the checkpoint's bond pieces lack checksums (corrupt)");
   std::vector<int> piece_of;
   r.get(piece_of);
-  if (piece_of.size() != n) throw ArchiveError("the checkpoint's row pieces do not fit its nodes (corrupt)");
+  if (piece_of.size() != n)
+    throw ArchiveError("the checkpoint's row pieces do not fit its nodes (corrupt)");
   std::vector<char> wanted(count, 0);
   for (std::size_t i = 0; i < n; ++i) {
     if (piece_of[i] < 0 || static_cast<std::uint64_t>(piece_of[i]) >= count)
@@ -255,7 +258,8 @@ void write_bond_rows_piece(const Model& m, const ArchiveSink& out) {
     value(present ? total : 0);
     if (!present) return;
     for (std::uint32_t i : p.owned)
-      out(reinterpret_cast<const char*>(a.data() + bf.begin(i)), (bf.end(i) - bf.begin(i)) * sizeof(T));
+      out(reinterpret_cast<const char*>(a.data() + bf.begin(i)),
+          (bf.end(i) - bf.begin(i)) * sizeof(T));
   };
   rows_of(bf.neighbor, true);
   rows_of(bf.inv_length, true);

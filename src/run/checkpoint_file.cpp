@@ -27,7 +27,8 @@ constexpr std::size_t kMagicSize = sizeof(kMagic) - 1;
 struct Fnv1a {
   std::uint64_t h = 14695981039346656037ull;
   void add(const char* p, std::size_t n) {
-    for (std::size_t k = 0; k < n; ++k) h = (h ^ static_cast<unsigned char>(p[k])) * 1099511628211ull;
+    for (std::size_t k = 0; k < n; ++k)
+      h = (h ^ static_cast<unsigned char>(p[k])) * 1099511628211ull;
   }
 };
 std::uint64_t fnv1a(const std::string& s) {
@@ -38,6 +39,17 @@ std::uint64_t fnv1a(const std::string& s) {
 
 [[noreturn]] void refuse(const std::string& path, const std::string& what) {
   throw DeckError(path, 0, 0, "--restart", what);
+}
+
+// The header's fields, in file order.
+template <class Archive, class Info>
+void info_fields(Archive&& a, Info& info) {
+  a(info.build);
+  a(info.deck);
+  a(info.deck_file);
+  a(info.threads);
+  a(info.step);
+  a(info.time);
 }
 
 // A checkpoint file's header, read from the start of `in` and checked against this build and
@@ -70,17 +82,13 @@ Header read_header(std::istream& in, const std::string& path, const Deck& dk) {
     refuse(path, fmt::format("checkpoint format {}; this build reads format {}", format,
                              kCheckpointFormat));
   const std::uint64_t hsize = value("header");
-  if (hsize > static_cast<std::uint64_t>(file_size)) refuse(path, "header length out of range (corrupt)");
+  if (hsize > static_cast<std::uint64_t>(file_size))
+    refuse(path, "header length out of range (corrupt)");
   const std::string head = bytes(hsize, "header");
   Header h;
   try {
     ArchiveReader r(head, path);
-    r.get(h.info.build);
-    r.get(h.info.deck);
-    r.get(h.info.deck_file);
-    r.get(h.info.threads);
-    r.get(h.info.step);
-    r.get(h.info.time);
+    info_fields([&](auto& v) { r.get(v); }, h.info);
   } catch (const ArchiveError& e) {
     refuse(path, e.what());
   }
@@ -88,8 +96,8 @@ Header read_header(std::istream& in, const std::string& path, const Deck& dk) {
   h.sum = value("header");
   const auto left = static_cast<std::uint64_t>(file_size - static_cast<std::streamoff>(in.tellg()));
   if (left != h.payload_size)
-    refuse(path, fmt::format("the payload holds {} bytes, the header says {} (truncated or corrupt)",
-                             left, h.payload_size));
+    refuse(path, fmt::format("the payload holds {} bytes, the header says {} (truncated or "
+                             "corrupt)", left, h.payload_size));
   if (h.info.build != build_id())
     refuse(path, fmt::format("written by build '{}', this is '{}': a restart continues bit for "
                              "bit only with the program that wrote it",
@@ -146,12 +154,7 @@ std::uint64_t write_checkpoint_parts(const std::string& path, const CheckpointIn
     size += n;
   });
   ArchiveWriter head;
-  head.put(info.build);
-  head.put(info.deck);
-  head.put(info.deck_file);
-  head.put(info.threads);
-  head.put(info.step);
-  head.put(info.time);
+  info_fields([&](const auto& v) { head.put(v); }, info);
   std::uint64_t written = 0;
   write_file_atomically(path, [&](std::ostream& o) {
     o.write(kMagic, kMagicSize);
