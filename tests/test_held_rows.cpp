@@ -85,6 +85,29 @@ TEST(HeldRows, KeptRowsAreTheWholeRowsUnderTheBondNames) {
   EXPECT_LT(h.num_bonds(), whole.num_bonds());
 }
 
+// The rows an LPS rank holds around its own: every family member of its rows, twice over, as
+// the whole model's families give them (the search marks them without storing a bond).
+TEST(HeldRows, RowsGrownByFamiliesAreTheFamiliesMembers) {
+  const Model m = plate();
+  const BondFamilies& bf = m.bonds;
+  const std::size_t n = m.nodes.size();
+  std::vector<char> rows(n, 0), expected(n, 0);
+  rows[0] = expected[0] = 1;  // a corner: two families reach about 6 spacings
+  for (int layer = 0; layer < 2; ++layer) {
+    std::vector<char> next(expected);
+    for (std::size_t i = 0; i < n; ++i)
+      if (expected[i])
+        for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) next[bf.neighbor[k]] = 1;
+    expected = std::move(next);
+  }
+  grow_by_families(m.nodes, m.quadrature, rows, 2);
+  EXPECT_EQ(rows, expected);
+  std::size_t held = 0;
+  for (char c : rows) held += c != 0;
+  EXPECT_GT(held, bf.end(0) - bf.begin(0) + 1);  // beyond the corner's own family
+  EXPECT_LT(held, n);                            // and not the whole plate
+}
+
 // A checkpoint of held rows keeps each rank's own rows in a piece: the pieces of two "ranks"
 // (odd and even rows) restore the whole arrays a serial run holds, bit for bit and with its room,
 // and the held rows of another split, reading only the pieces with rows it holds; a piece with

@@ -1,6 +1,7 @@
 #include "discretize/families.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 
@@ -250,6 +251,28 @@ BondFamilies build_families(const NodeSet& nodes, const QuadratureSpec& quad, do
   }
   fam.close_contiguous();
   return fam;
+}
+
+void grow_by_families(const NodeSet& nodes, const QuadratureSpec& quad, std::vector<char>& rows,
+                      int layers) {
+  if (nodes.size() == 0 || layers < 1) return;
+  const FamilySearch search(nodes, quad);
+  std::vector<std::uint32_t> frontier;
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    if (rows[i]) frontier.push_back(static_cast<std::uint32_t>(i));
+  for (int layer = 0; layer < layers && !frontier.empty(); ++layer) {
+    // Only the rows the last layer added have members not marked yet.
+    std::vector<char> grown(rows);
+#pragma omp parallel for schedule(dynamic, 256)
+    for (std::size_t q = 0; q < frontier.size(); ++q)
+      search.visit(frontier[q], [&](std::uint32_t j, double, float) {
+        std::atomic_ref<char>(grown[j]).store(1, std::memory_order_relaxed);
+      });
+    frontier.clear();
+    for (std::size_t i = 0; i < rows.size(); ++i)
+      if (grown[i] && !rows[i]) frontier.push_back(static_cast<std::uint32_t>(i));
+    rows = std::move(grown);
+  }
 }
 
 std::vector<std::uint64_t> family_offsets(const NodeSet& nodes, const QuadratureSpec& quad,

@@ -24,6 +24,11 @@ inline constexpr double kRefinementBondHeadroom = 0.25;
 BondFamilies build_families(const NodeSet& nodes, const QuadratureSpec& quadrature,
                             double headroom = 0.0, const std::vector<char>* rows = nullptr);
 
+// Adds to `rows` (per node) every family member of its rows, `layers` times over, storing no
+// bond (the rows a distributed LPS rank holds around its own: parallel/held_rows.hpp).
+void grow_by_families(const NodeSet& nodes, const QuadratureSpec& quadrature,
+                      std::vector<char>& rows, int layers);
+
 // The row begins build_families would give (its count pass; `rows` as there), with no bond
 // stored: what splitting the rows over ranks by their work needs before any rank searches them.
 std::vector<std::uint64_t> family_offsets(const NodeSet& nodes, const QuadratureSpec& quadrature,

@@ -75,17 +75,9 @@ BondFamilies build_held_families(RowPartition& p, const NodeSet& ns, const Quadr
   p.active = true;
   refresh_partition(p, ns, sizes);
   std::vector<char> keep(p.mine.begin(), p.mine.end());
-  BondFamilies bf = build_families(ns, q, 0.0, &keep);
   // LPS: the rows around its own (dilatations) and around those (the mutual-bond reach).
-  for (int layer = 0; region && layer < 2; ++layer) {
-    std::vector<char> grown(keep);
-    for (std::size_t i = 0; i < n; ++i)
-      if (keep[i])
-        for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) grown[bf.neighbor[k]] = 1;
-    keep = std::move(grown);
-    bf = BondFamilies{};
-    bf = build_families(ns, q, 0.0, &keep);
-  }
+  if (region) grow_by_families(ns, q, keep, 2);
+  BondFamilies bf = build_families(ns, q, 0.0, &keep);
   std::size_t held = 0;
   for (char c : keep) held += c != 0;
   p.whole_offsets = std::move(sizes.offsets);
