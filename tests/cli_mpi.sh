@@ -174,7 +174,7 @@ PY
     fi
   fi
   # Held rows checkpoint in pieces, one per rank, beside checkpoint.bin (the last checkpoint's
-  # alone: the 3-rank restart wrote none); a piece missing, or one of another checkpoint, is
+  # alone: the 3-rank restart wrote none); a piece missing, of another checkpoint or damaged is
   # refused (exit 2) naming it; a serial run restarts from them, and a serial run's checkpoint
   # restarts on 2 ranks that hold their rows.
   if [[ $name == restart-held-* ]]; then
@@ -183,10 +183,13 @@ PY
     if [[ ${pieces[*]} == "checkpoint.rows.$step.0-of-2.bin checkpoint.rows.$step.1-of-2.bin" ]]; then
       echo "ok   $name: the checkpoint's bond rows in pieces: ${pieces[*]}"
     else echo "FAIL $name: pieces beside the checkpoint: '${pieces[*]}'"; fail=1; fi
-    for bad in missing swapped; do
+    for bad in missing swapped damaged; do
       cb="$tmp/$name-$bad"; cp -r "$tmp/$name-ck" "$cb"
-      if [[ $bad == missing ]]; then rm -f "$cb/${pieces[1]}"
-      else cp "$cb/${pieces[0]}" "$cb/${pieces[1]}"; fi
+      case $bad in
+        missing) rm -f "$cb/${pieces[1]}" ;;
+        swapped) cp "$cb/${pieces[0]}" "$cb/${pieces[1]}" ;;
+        damaged) python3 -c "import os, sys; p = sys.argv[1]; at = os.path.getsize(p) // 2; f = open(p, 'r+b'); f.seek(at); b = f.read(1); f.seek(at); f.write(bytes([b[0] ^ 1]))" "$cb/${pieces[1]}" ;;
+      esac
       mpirun -np 2 "$bin" run "$deck" --out "$cb" "${args[@]}" --restart "$cb" > "$cb.log" 2>&1; rc=$?
       if [[ $rc -eq 2 ]] && grep -q "${pieces[1]}" "$cb.log"; then
         echo "ok   $name: a $bad piece refused: $(grep -m1 -o "${pieces[1]}.*" "$cb.log")"
