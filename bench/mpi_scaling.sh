@@ -5,18 +5,19 @@
 # solver.owned_integration false) and 1 rank x 2 threads, REPEATS times each in turn. Prints the
 # time-stepping rate (summary.json's bond_evals_per_s, from the solver's wall time) of each run and
 # the ratios of the medians: 2 ranks against 1 rank x 1 thread, and against 1 rank x 2 threads.
-#   bash bench/mpi_scaling.sh [REPEATS] [DECK]
+#   [PERIADAPT=path/to/periadapt] bash bench/mpi_scaling.sh [REPEATS] [DECK]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 repeats=${1:-3}
 deck=${2:-bench/pmb_block_3d.yaml}
-[[ -x build/periadapt ]] || bash scripts/build.sh
-build/periadapt --version | grep -q "MPI: yes" || { echo "built without MPI" >&2; exit 1; }
+bin=${PERIADAPT:-build/periadapt}
+[[ -x $bin ]] || bash scripts/build.sh
+"$bin" --version | grep -q "MPI: yes" || { echo "built without MPI" >&2; exit 1; }
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_btl=self,vader
 out=$(mktemp -d); trap 'rm -rf "$out"' EXIT
 rate() {  # owned_integration launcher words... -> bond evaluations per second
   local owned=$1; shift
-  "$@" build/periadapt run "$deck" --quiet --set "output.directory=$out/run" \
+  "$@" "$bin" run "$deck" --quiet --set "output.directory=$out/run" \
     --set "solver.owned_integration=$owned" > /dev/null
   python3 -c "import json; print(json.load(open('$out/run/summary.json'))['bond_evals_per_s'])"
 }
