@@ -176,8 +176,9 @@ PY
   # Held rows checkpoint in pieces, one per rank, beside checkpoint.bin (the last checkpoint's
   # alone: the 3-rank restart wrote none); a piece missing, of another checkpoint or damaged is
   # refused (exit 2) naming it; a serial run restarts from them, and a serial run's checkpoint
-  # restarts on 2 ranks that hold their rows.
-  if [[ $name == restart-held-* ]]; then
+  # restarts on 2 ranks that hold their rows (names restart-pieces-*; the other held restarts read
+  # pieces in the 2-to-3 restart above).
+  if [[ $name == restart-pieces-* ]]; then
     pieces=($(cd "$tmp/$name-ck" && ls checkpoint.rows.* 2> /dev/null))
     step=${pieces[0]#checkpoint.rows.}; step=${step%%.*}
     if [[ ${pieces[*]} == "checkpoint.rows.$step.0-of-2.bin checkpoint.rows.$step.1-of-2.bin" ]]; then
