@@ -60,6 +60,7 @@ void scratch_arrays(Archive& a, M& m) {
   a(m.lps_scratch.reach);
   a(m.lps_scratch.packed);
 }
+
 constexpr std::uint8_t kBondsInline = 0, kBondsInPieces = 1;
 
 // Whole bond arrays as a checkpoint holds them inline: consistent with n nodes.
