@@ -15,7 +15,6 @@
 
 #include <fmt/format.h>
 
-
 namespace periadapt {
 
 VtuSeries::VtuSeries(std::string directory, std::string basename, bool zlib)

@@ -47,8 +47,8 @@ void remove_earlier_run_outputs(const std::string& dir) {
       return name.size() >= n && name.compare(name.size() - n, n, q) == 0;
     };
     if ((starts("snapshot_") && ends(".vtu")) || (starts("damage_") && ends("us.png")) ||
-        name == kCheckpointName || is_checkpoint_piece(name) || name == "refinement.csv" || name == "crack_speed.csv" ||
-        name == "crack_speed.png" || name == "load_displacement.png")
+        name == kCheckpointName || is_checkpoint_piece(name) || name == "refinement.csv" ||
+        name == "crack_speed.csv" || name == "crack_speed.png" || name == "load_displacement.png")
       fs::remove(e.path(), ec);
   }
 }
