@@ -6,11 +6,17 @@
 # checkpoint at step 10 (each rank its rows' piece), and that checkpoint restarted on as many
 # ranks. Prints rank 0's model arrays (summary.json memory.model_bytes), its peak resident memory
 # and its resident memory at the end, the largest peak over the ranks, in MB, and the held runs'
-# rank-0 peaks over the 1-rank run's.
-#   [PERIADAPT=path/to/periadapt] bash bench/mpi_memory.sh [DECK]
+# rank-0 peaks over the 1-rank run's. STEPS "deck" runs the deck's own end time (an adaptive
+# deck's events), CHECKPOINT_EVERY sets where the checkpoint rows write (and restart from).
+#   [PERIADAPT=path/to/periadapt] bash bench/mpi_memory.sh [DECK [STEPS [CHECKPOINT_EVERY]]]
+#   e.g. bash bench/mpi_memory.sh bench/crack_branching_3d_adaptive_fine.yaml deck 200
 set -euo pipefail
 cd "$(dirname "$0")/.."
 deck=${1:-bench/pmb_block_3d.yaml}
+steps=${2:-20}
+every=${3:-10}
+length=(--set "solver.steps=$steps")
+[[ $steps == deck ]] && length=()
 bin=${PERIADAPT:-build/periadapt}
 [[ -x $bin ]] || bash scripts/build.sh
 "$bin" --version | grep -q "MPI: yes" || { echo "built without MPI" >&2; exit 1; }
@@ -19,7 +25,7 @@ export OMPI_MCA_rmaps_base_oversubscribe=1 OMPI_MCA_mpi_yield_when_idle=1
 out=$(mktemp -d); trap 'rm -rf "$out"' EXIT
 row() {  # label owned extra-args launcher words...
   local label=$1 owned=$2 extra=$3; shift 3
-  "$@" "$bin" run "$deck" --quiet --set "output.directory=$out/run" --set solver.steps=20 \
+  "$@" "$bin" run "$deck" --quiet --set "output.directory=$out/run" "${length[@]}" \
     --set "solver.owned_integration=$owned" $extra > /dev/null
   python3 - "$out/run/summary.json" "$label" <<'PY'
 import json, sys
@@ -37,7 +43,7 @@ for np in 2 4; do
   mpi=(mpirun -np "$np" -x OMP_NUM_THREADS=1)
   row "$np ranks, held rows" true "" "${mpi[@]}"
   row "$np ranks, whole model" false "" "${mpi[@]}"
-  row "$np held, checkpoint" true "--set output.checkpoint_every=10" "${mpi[@]}"
+  row "$np held, checkpoint" true "--set output.checkpoint_every=$every" "${mpi[@]}"
   row "$np held, restarted" true "--restart $out/run" "${mpi[@]}"
 done | tee "$out/rows"
 python3 - "$one" "$out/rows" <<'PY'

@@ -1,5 +1,6 @@
 #include "adapt/adaptor.hpp"
 
+#include "parallel/held_rows.hpp"
 #include "parallel/mpi_env.hpp"
 
 #include "core/binary_archive.hpp"
@@ -8,6 +9,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <iterator>
 
 #include "adapt/coarsen.hpp"
 #include "adapt/event_relaxation.hpp"
@@ -86,7 +88,21 @@ std::vector<std::uint32_t> Adaptor::parents_for(const std::vector<std::uint32_t>
     refinable = &own;
   }
   std::vector<std::uint32_t> parents = apply_visibility(m_, ids, *refinable, spec_.visibility_factor);
-  if (spec_.refine_loads) add_loaded_neighbours(m_, *refinable, parents);
+  if (spec_.refine_loads) {
+    if (!m_.partition.rows_held) {
+      add_loaded_neighbours(m_, *refinable, parents);
+    } else {
+      // A loaded node's row is its owner's: each rank looks at its own, and they share the finds.
+      std::vector<std::uint32_t> found = parents;
+      add_loaded_neighbours(m_, *refinable, found, &m_.partition.mine);
+      std::vector<std::uint32_t> added;
+      std::set_difference(found.begin(), found.end(), parents.begin(), parents.end(),
+                          std::back_inserter(added));
+      added = mpi::all_gather(added);
+      parents.insert(parents.end(), added.begin(), added.end());
+      std::sort(parents.begin(), parents.end());
+    }
+  }
   return parents;
 }
 
@@ -118,8 +134,11 @@ void Adaptor::refine(const std::vector<std::uint32_t>& parents, std::size_t iden
   std::size_t active = 0;
   for (auto f : m_.nodes.flags) active += (f & kActive) != 0;
   ev.active_nodes = active;
-  ev.bonds = m_.bonds.num_bonds();
+  // Every rank holds the rows the event rebuilt until it keeps its own again.
   const StableStep s = stable_time_step(m_, ev.stats.rebuilt);
+  if (m_.partition.rows_held)
+    rehold_rows(m_.partition, m_.nodes, m_.bonds, m_.quadrature, m_.formulation.state_based());
+  ev.bonds = whole_bond_count(m_.partition, m_.bonds);
   ev.dt_stable = s.dt;
   events_.push_back(ev);
   if (vv_.dt() > s.dt * (1 + 1e-9))
@@ -197,6 +216,15 @@ bool Adaptor::coarsen_quiet(const std::vector<double>& E, double alpha) {
   events_.back().stats.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return true;
+}
+
+bool Adaptor::rows_can_be_held() const {
+  // What reads rows beyond an event's window: coarsening's sweeps, relaxed events' and the
+  // energy correction's force passes, the dual pairing's transpose, surface corrections and the
+  // interface fit around the window.
+  return !spec_.coarsen && spec_.relax_sweeps == 0 && !spec_.conserve_energy &&
+         !spec_.interface_fit && !spec_.ghost_correction && !m_.formulation.dual_horizon &&
+         m_.surface_correction == SurfaceCorrection::None && !m_.interface_fit;
 }
 
 bool Adaptor::step() {

@@ -41,6 +41,9 @@ class Adaptor {
   const std::vector<RefinementEvent>& events() const { return events_; }
   std::size_t nodes_added() const;
   std::size_t nodes_removed() const;  // children returned to their parents by coarsening
+  // Whether a distributed run may hold its ranks' own bond rows (parallel/held_rows.hpp): every
+  // row the steps and events read outside an event's window is then a rank's own.
+  bool rows_can_be_held() const;
   // Checkpoints: the event log (the triggers keep no state between steps).
   void save_state(ArchiveWriter& w) const;
   void restore_state(ArchiveReader& r);

@@ -5,10 +5,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <stdexcept>
 
 #include "core/cell_grid.hpp"
 #include "discretize/partial_volume.hpp"
 #include "discretize/surface_correction.hpp"
+#include "parallel/held_rows.hpp"
 
 namespace periadapt {
 
@@ -115,6 +117,15 @@ std::vector<std::uint32_t> rebuild_families(Model& m, const CrackMemory& mem,
                              if (d2 <= rj * rj * (1 + 1e-9)) rebuild[j] = 1;
                            });
     }
+  }
+  if (m.partition.rows_held) {
+    // Held bond rows (a distributed run): every rank searches the window again, from its rows'
+    // old contents.
+    if (global) throw std::logic_error("held bond rows cannot be rebuilt globally");
+    std::vector<std::uint32_t> rows;
+    for (std::size_t i = 0; i < std::min(n_before, bf.num_nodes()); ++i)
+      if (rebuild[i]) rows.push_back(static_cast<std::uint32_t>(i));
+    publish_rows(m.partition, bf, rows);
   }
   // Broken bonds between surviving nodes, read from the current families for the rows about to
   // be searched again (copied rows keep their states as they are).

@@ -7,6 +7,7 @@
 #include "core/cell_grid.hpp"
 #include "core/visible_gradient.hpp"
 #include "discretize/families.hpp"
+#include "parallel/held_rows.hpp"
 
 namespace periadapt {
 
@@ -20,6 +21,17 @@ std::vector<char> begin_refinement(Model& m, std::vector<std::uint32_t>& parents
   st.momentum_scale = pk.momentum_scale;
   std::vector<char> is_parent(m.nodes.size(), 0);
   for (std::uint32_t p : parents) is_parent[p] = 1;
+  if (m.partition.rows_held) {
+    // The gradient fits and the crack memory read the parents' rows and their neighbours'.
+    publish_rows(m.partition, m.bonds, parents);
+    std::vector<char> near(m.nodes.size(), 0);
+    for (std::uint32_t p : parents)
+      for (std::uint64_t k = m.bonds.begin(p); k < m.bonds.end(p); ++k) near[m.bonds.neighbor[k]] = 1;
+    std::vector<std::uint32_t> rows;
+    for (std::size_t i = 0; i < near.size(); ++i)
+      if (near[i] && !is_parent[i]) rows.push_back(static_cast<std::uint32_t>(i));
+    publish_rows(m.partition, m.bonds, rows);
+  }
   return is_parent;
 }
 

@@ -13,7 +13,8 @@
 namespace periadapt {
 
 // The opening of an event: parents sorted and unique, momentum and kinetic energy before, and
-// the parent flags over the current nodes (empty when there is nothing to refine).
+// the parent flags over the current nodes (empty when there is nothing to refine). With held
+// bond rows, every rank gets the parents' rows and their neighbours' (collective).
 std::vector<char> begin_refinement(Model& m, std::vector<std::uint32_t>& parents, RefineStats& st);
 
 // A new node may go at `pos` (spacing h): inside the body box and a disk body, outside holes.

@@ -28,7 +28,7 @@ std::vector<char> refinable_nodes(const Model& m, const AdaptSpec& spec) {
 }
 
 void add_loaded_neighbours(const Model& m, const std::vector<char>& refinable,
-                           std::vector<std::uint32_t>& parents) {
+                           std::vector<std::uint32_t>& parents, const std::vector<char>* only) {
   if (parents.empty() || m.loads.empty()) return;
   const NodeSet& ns = m.nodes;
   std::vector<char> mark(ns.size(), 0);
@@ -36,7 +36,7 @@ void add_loaded_neighbours(const Model& m, const std::vector<char>& refinable,
   const std::size_t before = parents.size();
   for (const BodyLoad& l : m.loads)
     for (std::uint32_t i : l.nodes) {
-      if (mark[i] || !refinable[i]) continue;
+      if (mark[i] || !refinable[i] || (only && !(*only)[i])) continue;
       for (std::uint64_t k = m.bonds.begin(i); k < m.bonds.end(i); ++k) {
         const std::uint32_t j = m.bonds.neighbor[k];
         if (mark[j] == 1 && ns.level[j] >= ns.level[i]) {

@@ -42,9 +42,11 @@ std::vector<std::uint32_t> damage_trigger(const Model& m, const std::vector<std:
 // With spec.refine_loads: a loaded node bonded to a parent of the same or a coarser level joins
 // the parents. A fine zone bonded to a coarse loaded row pulls on it with its own, larger
 // micromodulus and gets only the coarse one's back (source-horizon pairing): the row then gives
-// way 35% more than on the fine grid (tests/test_agrs_invisible.cpp).
+// way 35% more than on the fine grid (tests/test_agrs_invisible.cpp). `only` (per node): the
+// loaded nodes looked at (a rank's own rows).
 void add_loaded_neighbours(const Model& m, const std::vector<char>& refinable,
-                           std::vector<std::uint32_t>& parents);
+                           std::vector<std::uint32_t>& parents,
+                           const std::vector<char>* only = nullptr);
 
 // Visibility: the refinable identified nodes and every refinable node j at the same or a coarser
 // level within radius_factor max(delta_i, delta_j) of an identified node i (no coarse node sees

@@ -191,7 +191,7 @@ void restore_bonds(ArchiveReader& r, Model& m, const PieceReader& read_piece) {
       return;
     }
     // A checkpoint of a run that held the whole arrays (a serial one), continued with held rows.
-    if (!can_hold_rows(whole))
+    if (!can_hold_rows(whole) || !whole.ends.empty())
       throw ArchiveError("the checkpoint's bond rows differ from the model's (another model?)");
     check_held_layout(m, whole.offsets, whole.keeps_state);
     for (std::size_t i = 0; i < n; ++i) {

@@ -1,6 +1,7 @@
 #include "parallel/held_rows.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <stdexcept>
 
 #include "parallel/mpi_env.hpp"
@@ -8,8 +9,7 @@
 namespace periadapt {
 
 bool can_hold_rows(const BondFamilies& bf) {
-  return bf.ends.empty() && bf.t_offsets.empty() && bf.dual_force.empty() &&
-         bf.live == bf.offsets.back();
+  return bf.t_offsets.empty() && bf.dual_force.empty();
 }
 
 namespace {
@@ -26,32 +26,233 @@ void keep_rows(std::vector<T>& a, const BondFamilies& bf, const std::vector<std:
   a = std::move(h);
 }
 
-}  // namespace
-
-void hold_bond_rows(RowPartition& p, BondFamilies& bf, const std::vector<std::uint32_t>& keep) {
-  if (!can_hold_rows(bf)) throw std::logic_error("held bond rows need contiguous rows");
+// Keeps the rows `keep` (ascending, all present here) in contiguous arrays.
+void compact_to(RowPartition& p, BondFamilies& bf, const std::vector<std::uint32_t>& keep) {
   const std::size_t n = bf.num_nodes();
   std::uint64_t kept = 0;
   for (std::uint32_t i : keep) kept += bf.end(i) - bf.begin(i);
-  p.whole_capacity = bf.neighbor.capacity();
   keep_rows(bf.neighbor, bf, keep, kept);
   keep_rows(bf.inv_length, bf, keep, kept);
   keep_rows(bf.beta, bf, keep, kept);
   if (bf.keeps_state) keep_rows(bf.state, bf, keep, kept);
   std::vector<std::uint64_t> offsets(n + 1, 0);
+  p.held.assign(n, 0);
   std::size_t q = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const bool held = q < keep.size() && keep[q] == i;
     offsets[i + 1] = offsets[i] + (held ? bf.end(i) - bf.begin(i) : 0);
+    p.held[i] = held;
     q += held;
   }
-  p.whole_offsets = std::move(bf.offsets);
   bf.offsets = std::move(offsets);
   bf.close_contiguous();
   p.rows_held = true;
   p.held_row_count = keep.size();
   // The partition stays the one these rows came from (refresh_partition compares the size).
   p.bonds = bf.neighbor.size();
+}
+
+// Keeps the rows `keep` (ascending, all present here) where they are: each slides down over the
+// rows let go, in the order of their places, so no array is copied whole (an event's rehold would
+// otherwise hold two copies of a rank's rows). Rows then lie in no particular order (bf.ends).
+void compact_in_place(RowPartition& p, BondFamilies& bf, const std::vector<std::uint32_t>& keep) {
+  const std::size_t n = bf.num_nodes();
+  if (bf.ends.empty()) bf.ends.assign(bf.offsets.begin() + 1, bf.offsets.end());
+  std::vector<std::uint32_t> order(keep);
+  std::sort(order.begin(), order.end(),
+            [&](std::uint32_t a, std::uint32_t b) { return bf.offsets[a] < bf.offsets[b]; });
+  p.held.assign(n, 0);
+  std::uint64_t at = 0;
+  for (std::uint32_t i : order) {
+    const std::uint64_t b = bf.offsets[i], e = bf.ends[i];
+    if (b != at) {
+      // at < b: a copy towards the front never overwrites what it has still to read.
+      auto slide = [&](auto& a) { std::copy(a.begin() + b, a.begin() + e, a.begin() + at); };
+      slide(bf.neighbor);
+      slide(bf.inv_length);
+      slide(bf.beta);
+      if (bf.keeps_state) slide(bf.state);
+    }
+    bf.offsets[i] = at;
+    bf.ends[i] = at + (e - b);
+    at += e - b;
+    p.held[i] = 1;
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    if (!p.held[i]) bf.offsets[i] = bf.ends[i] = at;
+  bf.offsets[n] = at;
+  bf.live = at;
+  auto fit = [&](auto& a) {
+    a.resize(at);
+    // Rows handed to other ranks (a repartition) give their memory back.
+    if (a.capacity() > 2 * at + 4096) a.shrink_to_fit();
+  };
+  fit(bf.neighbor);
+  fit(bf.inv_length);
+  fit(bf.beta);
+  if (bf.keeps_state) fit(bf.state);
+  p.rows_held = true;
+  p.held_row_count = keep.size();
+  p.bonds = bf.neighbor.size();
+}
+
+// Whole row lengths as row begins (a prefix sum).
+template <class Length>
+std::vector<std::uint64_t> row_begins(std::size_t n, Length length) {
+  std::vector<std::uint64_t> b(n + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) b[i + 1] = b[i] + length(i);
+  return b;
+}
+
+// Rows' contents in flat arrays, for a gather: their lengths, then their bonds.
+struct RowData {
+  std::vector<std::uint64_t> length;
+  std::vector<std::uint32_t> neighbor, beta;  // beta as its bits
+  std::vector<double> inv_length, state;
+
+  void add(const BondFamilies& bf, std::uint32_t i) {
+    length.push_back(bf.end(i) - bf.begin(i));
+    for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {
+      neighbor.push_back(bf.neighbor[k]);
+      beta.push_back(std::bit_cast<std::uint32_t>(bf.beta[k]));
+      inv_length.push_back(bf.inv_length[k]);
+      if (bf.keeps_state) state.push_back(bf.state[k]);
+    }
+  }
+  // Every rank's, concatenated in rank order.
+  RowData gathered() const {
+    return {mpi::all_gather(length), mpi::all_gather(neighbor), mpi::all_gather(beta),
+            mpi::all_gather(inv_length), mpi::all_gather(state)};
+  }
+};
+
+// Reads gathered rows in order; installs those asked for at the end of the arrays.
+class RowReader {
+ public:
+  // `incoming`: the bonds about to be installed, room for which is made in one step per array.
+  RowReader(const RowData& d, BondFamilies& bf, std::uint64_t incoming) : d_(d), bf_(bf) {
+    const std::uint64_t want = bf.neighbor.size() + incoming;
+    auto room = [&](auto& a) {
+      if (a.capacity() < want) a.reserve(want + want / 8);
+    };
+    room(bf.neighbor);
+    room(bf.inv_length);
+    room(bf.beta);
+    if (bf.keeps_state) room(bf.state);
+  }
+  void next(std::uint32_t i, bool install) {
+    const std::uint64_t len = d_.length.at(row_++);
+    if (install) {
+      if (bf_.ends.empty()) bf_.ends.assign(bf_.offsets.begin() + 1, bf_.offsets.end());
+      const std::uint64_t at = bf_.neighbor.size();
+      bf_.neighbor.insert(bf_.neighbor.end(), d_.neighbor.begin() + bond_, d_.neighbor.begin() + bond_ + len);
+      bf_.inv_length.insert(bf_.inv_length.end(), d_.inv_length.begin() + bond_,
+                            d_.inv_length.begin() + bond_ + len);
+      for (std::uint64_t k = bond_; k < bond_ + len; ++k)
+        bf_.beta.push_back(std::bit_cast<float>(d_.beta[k]));
+      if (bf_.keeps_state)
+        bf_.state.insert(bf_.state.end(), d_.state.begin() + bond_, d_.state.begin() + bond_ + len);
+      bf_.live += len - (bf_.ends[i] - bf_.offsets[i]);
+      bf_.offsets[i] = at;
+      bf_.ends[i] = at + len;
+      bf_.offsets.back() = bf_.neighbor.size();
+    }
+    bond_ += len;
+  }
+
+ private:
+  const RowData& d_;
+  BondFamilies& bf_;
+  std::size_t row_ = 0;
+  std::uint64_t bond_ = 0;
+};
+
+}  // namespace
+
+void hold_bond_rows(RowPartition& p, BondFamilies& bf, const std::vector<std::uint32_t>& keep) {
+  if (!can_hold_rows(bf)) throw std::logic_error("held bond rows need arrays without a transpose");
+  std::vector<std::uint64_t> whole =
+      row_begins(bf.num_nodes(), [&](std::size_t i) { return bf.end(i) - bf.begin(i); });
+  p.whole_capacity = std::max<std::uint64_t>(whole.back(), bf.neighbor.capacity());
+  compact_to(p, bf, keep);
+  p.whole_offsets = std::move(whole);
+}
+
+void publish_rows(RowPartition& p, BondFamilies& bf, const std::vector<std::uint32_t>& rows) {
+  if (!p.rows_held) return;
+  const int me = mpi::rank();
+  RowData mine;
+  for (std::uint32_t i : rows)
+    if (p.owner[i] == me) mine.add(bf, i);
+  const RowData all = mine.gathered();
+  // Gathered in rank order: the rows grouped by owner, in list order within each.
+  std::vector<std::uint32_t> order(rows);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::uint32_t a, std::uint32_t b) { return p.owner[a] < p.owner[b]; });
+  std::uint64_t incoming = 0;
+  for (std::size_t k = 0; k < order.size(); ++k)
+    if (!p.held[order[k]]) incoming += all.length[k];
+  RowReader read(all, bf, incoming);
+  for (std::uint32_t i : order) {
+    const bool lacks = !p.held[i];
+    read.next(i, lacks);
+    p.held[i] = 1;
+  }
+}
+
+void rehold_rows(RowPartition& p, const NodeSet& ns, BondFamilies& bf, const QuadratureSpec& q,
+                 bool region) {
+  const std::size_t n = ns.size();
+  if (bf.num_nodes() != n) throw std::logic_error("held rows: the arrays miss the new nodes' rows");
+  // Rows this rank has: whole arrays, or the held and published ones and the event's new rows.
+  auto present = [&](std::size_t i) { return !p.rows_held || i >= p.held.size() || p.held[i]; };
+  std::vector<std::uint64_t> whole = row_begins(n, [&](std::size_t i) {
+    return present(i) ? bf.end(i) - bf.begin(i) : p.whole_offsets[i + 1] - p.whole_offsets[i];
+  });
+  const std::vector<int> before = p.owner;
+  if (p.nodes != n) {
+    // Owners from the whole model's rows (every rank weighs the same lengths).
+    BondFamilies sizes;
+    sizes.offsets = whole;
+    sizes.close_contiguous();
+    refresh_partition(p, ns, sizes);
+  }
+  std::vector<char> keep(p.mine.begin(), p.mine.end());
+  if (region) grow_by_families(ns, q, keep, 2);
+  // What this rank lacks comes from the row's previous owner, which held it.
+  std::vector<std::uint32_t> want;
+  for (std::size_t i = 0; i < n; ++i)
+    if (keep[i] && !present(i)) want.push_back(static_cast<std::uint32_t>(i));
+  std::vector<int> counts;
+  const std::vector<std::uint32_t> asked = mpi::all_gather(want, &counts);
+  const int me = mpi::rank();
+  RowData out;
+  for (std::uint32_t i : asked)
+    if (before[i] == me) out.add(bf, i);
+  const RowData all = out.gathered();
+  const std::size_t mine_begin = mpi::own_offset(counts), mine_end = mine_begin + want.size();
+  // The rows arrive grouped by sender, in request order within each.
+  std::vector<std::size_t> arrival;
+  for (int s = 0; s < mpi::size(); ++s)
+    for (std::size_t k = 0; k < asked.size(); ++k)
+      if (before[asked[k]] == s) arrival.push_back(k);
+  auto mine = [&](std::size_t k) { return k >= mine_begin && k < mine_end; };
+  std::uint64_t incoming = 0;
+  for (std::size_t a = 0; a < arrival.size(); ++a)
+    if (mine(arrival[a])) incoming += all.length[a];
+  RowReader read(all, bf, incoming);
+  for (std::size_t k : arrival) read.next(asked[k], mine(k));
+  std::vector<std::uint32_t> kept;
+  for (std::size_t i = 0; i < n; ++i)
+    if (keep[i]) kept.push_back(static_cast<std::uint32_t>(i));
+  p.whole_capacity = whole.back();
+  // From whole arrays (the first pass) a fresh copy of the kept rows frees the rest; held arrays
+  // are compacted where they are.
+  if (p.rows_held)
+    compact_in_place(p, bf, kept);
+  else
+    compact_to(p, bf, kept);
+  p.whole_offsets = std::move(whole);
 }
 
 BondFamilies build_held_families(RowPartition& p, const NodeSet& ns, const QuadratureSpec& q,
@@ -83,6 +284,7 @@ BondFamilies build_held_families(RowPartition& p, const NodeSet& ns, const Quadr
   p.whole_offsets = std::move(sizes.offsets);
   p.whole_capacity = p.whole_offsets.back();  // a serial build without refinement room
   p.rows_held = true;
+  p.held.assign(keep.begin(), keep.end());
   p.held_row_count = held;
   p.bonds = bf.neighbor.size();
   return bf;

@@ -17,12 +17,24 @@
 
 namespace periadapt {
 
-// Whether the arrays are of a shape held rows support: contiguous rows, no dual-horizon transpose.
+// Whether the arrays are of a shape held rows support: no dual-horizon transpose.
 bool can_hold_rows(const BondFamilies& bf);
 
-// Keeps the rows `keep` (ascending) and empties the others; records the whole model's row begins
-// in `p` (rows_held). The rows must be contiguous (can_hold_rows).
+// Keeps the rows `keep` (ascending) of whole arrays and empties the others, in contiguous
+// arrays; records the whole model's row begins in `p` (rows_held).
 void hold_bond_rows(RowPartition& p, BondFamilies& bf, const std::vector<std::uint32_t>& keep);
+
+// Refinement events with held rows (p.refining). An event reads and rebuilds the rows near its
+// parents: `rows` (the same list on every rank) come from their owners to every rank that lacks
+// them, so that every rank runs the event on the same rows, as a serial run does (collective).
+void publish_rows(RowPartition& p, BondFamilies& bf, const std::vector<std::uint32_t>& rows);
+
+// After an event (or, from whole arrays, at the first pass): the whole model's row lengths
+// (every rank holds the rows the event rebuilt), owners for the new nodes (or a repartition),
+// then each rank keeps its own rows and, with `region` (LPS), those within two families of them,
+// fetching what it lacks from the rows' previous owners (collective).
+void rehold_rows(RowPartition& p, const NodeSet& ns, BondFamilies& bf, const QuadratureSpec& q,
+                 bool region);
 
 // A run that holds its rows from the start (no rank ever holds the whole arrays): splits the
 // rows over the ranks by their sizes (the family search's count pass, storing no bond), then

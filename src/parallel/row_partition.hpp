@@ -62,6 +62,10 @@ struct RowPartition {
   // model's rows begin at whole_offsets (a checkpoint's layout).
   bool hold_rows = false;
   bool rows_held = false;
+  // Refinement events change the rows (adaptive runs): each event gathers the rows it reads onto
+  // every rank first, and the ranks hold their rows afresh after it (rehold_rows).
+  bool refining = false;
+  std::vector<char> held;  // per node: this rank has the row's contents (while rows_held)
   std::vector<std::uint64_t> whole_offsets;
   std::uint64_t whole_capacity = 0;  // the whole arrays' room (a checkpoint records it)
   std::size_t held_row_count = 0;

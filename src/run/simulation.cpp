@@ -55,13 +55,18 @@ void remove_earlier_run_outputs(const std::string& dir) {
 
 // A distributed explicit run whose ranks hold their own bond rows from the set-up on
 // (parallel/held_rows.hpp): owned integration, and nothing that reads another rank's rows
-// (refinement events, dual-horizon memberships, contact, impactors, the overlay) or corrects
-// surfaces over the whole model at set-up. A restart builds the same rows and reads their bonds
-// from the checkpoint.
-bool holds_rows_from_setup(const Deck& dk) {
-  return mpi::distributed() && dk.owned_integration && !dk.adapt.enabled &&
-         !dk.adapt.ghost_correction && !dk.dual_horizon && !dk.contact.enabled &&
-         dk.impactors.empty() && !dk.pdro.enabled &&
+// (dual-horizon memberships, contact, impactors, the overlay; of refinement, what
+// Adaptor::rows_can_be_held names) or corrects surfaces over the whole model at set-up. A restart
+// builds the same rows and reads their bonds from the checkpoint; an adaptive one, whose node
+// set is not the deck's, reads whole arrays and holds its rows from its first pass on, as do
+// runs refined before they start.
+bool holds_rows_from_setup(const Deck& dk, bool restart) {
+  const AdaptSpec& a = dk.adapt;
+  const bool events_allow = !a.enabled || (!restart && a.initial.empty() && !a.coarsen &&
+                                           a.relax_sweeps == 0 && !a.conserve_energy &&
+                                           !a.interface_fit);
+  return mpi::distributed() && dk.owned_integration && events_allow && !a.ghost_correction &&
+         !dk.dual_horizon && !dk.contact.enabled && dk.impactors.empty() && !dk.pdro.enabled &&
          dk.surface_correction == SurfaceCorrection::None;
 }
 
@@ -132,7 +137,7 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
   const auto t_start = clock::now();
   RunResult res;
   Model& m = res.model;
-  if (holds_rows_from_setup(dk)) {
+  if (holds_rows_from_setup(dk, opt.restart.has_value())) {
     const bool region = Formulation::named(dk.formulation, false)->state_based();
     m = build_model(dk, [&](const NodeSet& ns, const QuadratureSpec& q, RowPartition& p) {
       p.method = dk.partition;
@@ -205,8 +210,12 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
     // writes them (and owned integration need not run the steps before a check whole).
     vv.keep_energies_for_checks(0);
   }
-  // Without refinement events only each rank's own passes read its bond rows: it keeps those.
-  m.partition.hold_rows = vv.owned_integration() && !adaptor;
+  // Each rank keeps the bond rows its own passes read; refinement events gather the rows they
+  // read onto every rank first.
+  m.partition.hold_rows = vv.owned_integration() && (!adaptor || adaptor->rows_can_be_held());
+  if (m.partition.rows_held && adaptor && !adaptor->rows_can_be_held())
+    throw std::logic_error("held bond rows in a run whose events read other ranks' rows");
+  m.partition.refining = adaptor != nullptr;
 
   RunView view(dk, m, vv, adaptor.get(), dir, opt.write_files, ts.steps, t_start);
   // Observers, in the order they see each step: the tip before the history row that shows it;

@@ -132,8 +132,12 @@ std::size_t distributed_forces(Model& m, bool allow_breaking, const std::vector<
   // read from here on: its own, and for LPS its region's (dilatations, mutual-bond reach).
   RowPartition& part = m.partition;
   if (part.hold_rows && !part.rows_held && part.ghost_mode &&
-      part.region_generation == part.generation && can_hold_rows(m.bonds))
-    hold_bond_rows(part, m.bonds, m.formulation.state_based() ? part.region : part.owned);
+      part.region_generation == part.generation && can_hold_rows(m.bonds)) {
+    if (part.refining)
+      rehold_rows(part, m.nodes, m.bonds, m.quadrature, m.formulation.state_based());
+    else
+      hold_bond_rows(part, m.bonds, m.formulation.state_based() ? part.region : part.owned);
+  }
   // Every rank holds the whole state: each adds the impactors' contact to the shared forces
   // and sums the impactors' reactions over all nodes in the serial run's order.
   if (!m.impactors.empty()) add_impactor_forces(m.impactors, m.nodes, rows, W);

@@ -268,7 +268,14 @@ void VelocityVerlet::classify_rates(const std::vector<std::uint32_t>* rows) {
         pending_.push_back(static_cast<std::uint32_t>(i));
     }
   };
-  if (rows) {
+  if (rows && m_.partition.rows_held) {
+    // Held bond rows: each row's sum from its owner.
+    std::vector<double> K(ns.size(), 0.0);
+    for (std::uint32_t i : *rows)
+      if (m_.partition.mine[i]) K[i] = material_stiffness_row(ns, m_.bonds, material_context(m_), i);
+    share_owned_values(m_.partition, K, rows);
+    for (std::uint32_t i : *rows) sort_node(i, K[i]);
+  } else if (rows) {
     for (std::uint32_t i : *rows)
       sort_node(i, material_stiffness_row(ns, m_.bonds, material_context(m_), i));
   } else {
