@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "discretize/families.hpp"
 #include "parallel/held_rows.hpp"
 
 namespace periadapt {
@@ -171,6 +172,26 @@ void read_pieces(ArchiveReader& r, BondFamilies& to, const std::vector<std::uint
                          std::to_string(i) + " (corrupt)");
 }
 
+// An adaptive run's held rows: its node set is the checkpoint's, not the deck's, so the rows
+// the set-up split are let go and the checkpoint's rows are split afresh (collective). Returns
+// this rank's rows to hold (LPS: with those within two families).
+std::vector<std::uint32_t> split_restored_rows(Model& m, const std::vector<std::uint64_t>& offsets) {
+  RowPartition& p = m.partition;
+  m.bonds = BondFamilies{};
+  BondFamilies sizes;
+  sizes.offsets = offsets;
+  sizes.close_contiguous();
+  p.owner.clear();
+  p.nodes = 0;
+  refresh_partition(p, m.nodes, sizes);
+  std::vector<char> keep(p.mine.begin(), p.mine.end());
+  if (m.formulation.state_based()) grow_by_families(m.nodes, m.quadrature, keep, 2);
+  std::vector<std::uint32_t> rows;
+  for (std::size_t i = 0; i < keep.size(); ++i)
+    if (keep[i]) rows.push_back(static_cast<std::uint32_t>(i));
+  return rows;
+}
+
 // The bond section: inline whole arrays or pieces, into whole or held arrays.
 void restore_bonds(ArchiveReader& r, Model& m, const PieceReader& read_piece) {
   const std::size_t n = m.nodes.size();
@@ -191,6 +212,17 @@ void restore_bonds(ArchiveReader& r, Model& m, const PieceReader& read_piece) {
       return;
     }
     // A checkpoint of a run that held the whole arrays (a serial one), continued with held rows.
+    if (m.partition.refining) {
+      if (!can_hold_rows(whole) || whole.keeps_state != m.bonds.keeps_state)
+        throw ArchiveError("the checkpoint's bond rows differ from the model's (another model?)");
+      std::vector<std::uint64_t> lengths(n + 1, 0);
+      for (std::size_t i = 0; i < n; ++i) lengths[i + 1] = lengths[i] + whole.end(i) - whole.begin(i);
+      const std::vector<std::uint32_t> keep = split_restored_rows(m, lengths);
+      hold_bond_rows(m.partition, whole, keep);
+      m.bonds = std::move(whole);
+      m.partition.whole_capacity = room;
+      return;
+    }
     if (!can_hold_rows(whole) || !whole.ends.empty())
       throw ArchiveError("the checkpoint's bond rows differ from the model's (another model?)");
     check_held_layout(m, whole.offsets, whole.keeps_state);
@@ -219,6 +251,31 @@ void restore_bonds(ArchiveReader& r, Model& m, const PieceReader& read_piece) {
   const std::uint64_t total = offsets.back();
   if (room < total || room > 4 * total + 4096)
     throw ArchiveError("the checkpoint's bond array room is out of range (corrupt)");
+  if (held && m.partition.refining) {
+    if (keeps_state != m.bonds.keeps_state)
+      throw ArchiveError("the checkpoint and the deck differ in the bond law's history");
+    RowPartition& p = m.partition;
+    const std::vector<std::uint32_t> keep = split_restored_rows(m, offsets);
+    BondFamilies& bf = m.bonds;
+    bf.keeps_state = keeps_state;
+    bf.offsets.assign(n + 1, 0);
+    p.held.assign(n, 0);
+    for (std::uint32_t i : keep) p.held[i] = 1;
+    for (std::size_t i = 0; i < n; ++i)
+      bf.offsets[i + 1] = bf.offsets[i] + (p.held[i] ? offsets[i + 1] - offsets[i] : 0);
+    bf.neighbor.resize(bf.offsets[n]);
+    bf.inv_length.resize(bf.offsets[n]);
+    bf.beta.resize(bf.offsets[n]);
+    if (keeps_state) bf.state.resize(bf.offsets[n]);
+    bf.close_contiguous();
+    p.rows_held = true;
+    p.held_row_count = keep.size();
+    p.whole_offsets = offsets;
+    p.whole_capacity = room;
+    p.bonds = bf.neighbor.size();
+    read_pieces(r, bf, offsets, false, read_piece);
+    return;
+  }
   if (held) {
     check_held_layout(m, offsets, keeps_state);
     m.partition.whole_capacity = room;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <stdexcept>
+#include <type_traits>
 
 #include "parallel/mpi_env.hpp"
 
@@ -124,6 +125,21 @@ struct RowData {
     return {mpi::all_gather(length), mpi::all_gather(neighbor), mpi::all_gather(beta),
             mpi::all_gather(inv_length), mpi::all_gather(state)};
   }
+  // to[r] to rank r; what every rank sent this one, concatenated in rank order.
+  static RowData exchanged(std::vector<RowData>& to) {
+    RowData got;
+    auto send = [&](auto member) {
+      std::vector<std::remove_reference_t<decltype(to[0].*member)>> per(to.size());
+      for (std::size_t r = 0; r < to.size(); ++r) per[r] = std::move(to[r].*member);
+      got.*member = mpi::all_to_all(per);
+    };
+    send(&RowData::length);
+    send(&RowData::neighbor);
+    send(&RowData::beta);
+    send(&RowData::inv_length);
+    send(&RowData::state);
+    return got;
+  }
 };
 
 // Reads gathered rows in order; installs those asked for at the end of the arrays.
@@ -219,29 +235,23 @@ void rehold_rows(RowPartition& p, const NodeSet& ns, BondFamilies& bf, const Qua
   }
   std::vector<char> keep(p.mine.begin(), p.mine.end());
   if (region) grow_by_families(ns, q, keep, 2);
-  // What this rank lacks comes from the row's previous owner, which held it.
-  std::vector<std::uint32_t> want;
+  // What this rank lacks comes from the row's previous owner, which held it: each rank asks
+  // those owners, and they answer, point to point (a repartition moves many rows).
+  const auto P = static_cast<std::size_t>(mpi::size());
+  std::vector<std::vector<std::uint32_t>> ask(P);
   for (std::size_t i = 0; i < n; ++i)
-    if (keep[i] && !present(i)) want.push_back(static_cast<std::uint32_t>(i));
+    if (keep[i] && !present(i)) ask[static_cast<std::size_t>(before[i])].push_back(static_cast<std::uint32_t>(i));
   std::vector<int> counts;
-  const std::vector<std::uint32_t> asked = mpi::all_gather(want, &counts);
-  const int me = mpi::rank();
-  RowData out;
-  for (std::uint32_t i : asked)
-    if (before[i] == me) out.add(bf, i);
-  const RowData all = out.gathered();
-  const std::size_t mine_begin = mpi::own_offset(counts), mine_end = mine_begin + want.size();
-  // The rows arrive grouped by sender, in request order within each.
-  std::vector<std::size_t> arrival;
-  for (int s = 0; s < mpi::size(); ++s)
-    for (std::size_t k = 0; k < asked.size(); ++k)
-      if (before[asked[k]] == s) arrival.push_back(k);
-  auto mine = [&](std::size_t k) { return k >= mine_begin && k < mine_end; };
+  const std::vector<std::uint32_t> asked = mpi::all_to_all(ask, &counts);
+  std::vector<RowData> reply(P);
+  for (std::size_t r = 0, at = 0; r < P; ++r)
+    for (int c = 0; c < counts[r]; ++c) reply[r].add(bf, asked[at++]);
+  const RowData got = RowData::exchanged(reply);
   std::uint64_t incoming = 0;
-  for (std::size_t a = 0; a < arrival.size(); ++a)
-    if (mine(arrival[a])) incoming += all.length[a];
-  RowReader read(all, bf, incoming);
-  for (std::size_t k : arrival) read.next(asked[k], mine(k));
+  for (std::uint64_t len : got.length) incoming += len;
+  RowReader read(got, bf, incoming);
+  for (const auto& from : ask)
+    for (std::uint32_t i : from) read.next(i, true);
   std::vector<std::uint32_t> kept;
   for (std::size_t i = 0; i < n; ++i)
     if (keep[i]) kept.push_back(static_cast<std::uint32_t>(i));

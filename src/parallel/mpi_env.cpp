@@ -152,6 +152,31 @@ std::vector<T> all_gather(const std::vector<T>& mine, std::vector<int>* counts) 
 }
 
 template <class T>
+std::vector<T> all_to_all(const std::vector<std::vector<T>>& send, std::vector<int>* counts) {
+#ifdef PERIADAPT_HAVE_MPI
+  if (g_active) {
+    const auto P = static_cast<std::size_t>(g_size);
+    std::vector<int> sn(P), sat(P), rn(P), rat(P);
+    std::vector<T> flat;
+    for (std::size_t r = 0; r < P; ++r) {
+      sn[r] = static_cast<int>(send.at(r).size());
+      flat.insert(flat.end(), send[r].begin(), send[r].end());
+    }
+    MPI_Alltoall(sn.data(), 1, MPI_INT, rn.data(), 1, MPI_INT, MPI_COMM_WORLD);
+    std::exclusive_scan(sn.begin(), sn.end(), sat.begin(), 0);
+    std::exclusive_scan(rn.begin(), rn.end(), rat.begin(), 0);
+    std::vector<T> out(static_cast<std::size_t>(rat.back() + rn.back()));
+    MPI_Alltoallv(flat.data(), sn.data(), sat.data(), type_of<T>(), out.data(), rn.data(),
+                  rat.data(), type_of<T>(), MPI_COMM_WORLD);
+    if (counts) *counts = std::move(rn);
+    return out;
+  }
+#endif
+  if (counts) *counts = {static_cast<int>(send.at(0).size())};
+  return send.at(0);
+}
+
+template <class T>
 std::vector<T> gather_to_root(const std::vector<T>& mine) {
 #ifdef PERIADAPT_HAVE_MPI
   if (g_active) {
@@ -193,5 +218,10 @@ template std::vector<std::uint32_t> all_gather(const std::vector<std::uint32_t>&
 template std::vector<std::uint64_t> all_gather(const std::vector<std::uint64_t>&, std::vector<int>*);
 template std::vector<int> all_gather(const std::vector<int>&, std::vector<int>*);
 template std::vector<std::uint64_t> gather_to_root(const std::vector<std::uint64_t>&);
+template std::vector<double> all_to_all(const std::vector<std::vector<double>>&, std::vector<int>*);
+template std::vector<std::uint32_t> all_to_all(const std::vector<std::vector<std::uint32_t>>&,
+                                               std::vector<int>*);
+template std::vector<std::uint64_t> all_to_all(const std::vector<std::vector<std::uint64_t>>&,
+                                               std::vector<int>*);
 
 }  // namespace periadapt::mpi

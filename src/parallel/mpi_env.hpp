@@ -48,6 +48,11 @@ template <class T>
 void all_gather_into(const std::vector<T>& mine, std::vector<T>& out,
                      std::vector<int>* counts = nullptr);
 
+// Personalized exchange: send[r] goes to rank r; returns what every rank sent this one,
+// concatenated in rank order, and (counts) how many came from each.
+template <class T>
+std::vector<T> all_to_all(const std::vector<std::vector<T>>& send, std::vector<int>* counts = nullptr);
+
 // Each rank's `mine` concatenated in rank order on rank 0 alone (the others get an empty
 // vector): what one rank writes, without a copy of it on every rank.
 template <class T>

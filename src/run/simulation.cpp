@@ -58,11 +58,11 @@ void remove_earlier_run_outputs(const std::string& dir) {
 // (dual-horizon memberships, contact, impactors, the overlay; of refinement, what
 // Adaptor::rows_can_be_held names) or corrects surfaces over the whole model at set-up. A restart
 // builds the same rows and reads their bonds from the checkpoint; an adaptive one, whose node
-// set is not the deck's, reads whole arrays and holds its rows from its first pass on, as do
-// runs refined before they start.
-bool holds_rows_from_setup(const Deck& dk, bool restart) {
+// set is the checkpoint's, splits the checkpoint's rows afresh and reads its own. Runs refined
+// before they start hold their rows from their first pass on.
+bool holds_rows_from_setup(const Deck& dk) {
   const AdaptSpec& a = dk.adapt;
-  const bool events_allow = !a.enabled || (!restart && a.initial.empty() && !a.coarsen &&
+  const bool events_allow = !a.enabled || (a.initial.empty() && !a.coarsen &&
                                            a.relax_sweeps == 0 && !a.conserve_energy &&
                                            !a.interface_fit);
   return mpi::distributed() && dk.owned_integration && events_allow && !a.ghost_correction &&
@@ -137,7 +137,7 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
   const auto t_start = clock::now();
   RunResult res;
   Model& m = res.model;
-  if (holds_rows_from_setup(dk, opt.restart.has_value())) {
+  if (holds_rows_from_setup(dk)) {
     const bool region = Formulation::named(dk.formulation, false)->state_based();
     m = build_model(dk, [&](const NodeSet& ns, const QuadratureSpec& q, RowPartition& p) {
       p.method = dk.partition;
@@ -151,6 +151,8 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
   if (mpi::distributed()) {
     enable_distributed_forces(dk, m);
   }
+  // Refinement events change the rows (a restart reads an adaptive run's rows by that).
+  m.partition.refining = dk.adapt.enabled;
   const double t_setup = std::chrono::duration<double>(clock::now() - t_start).count();
   const TimeStepChoice ts = choose_time_step(dk, m);
   const NodeSet& ns = m.nodes;
@@ -215,7 +217,6 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
   m.partition.hold_rows = vv.owned_integration() && (!adaptor || adaptor->rows_can_be_held());
   if (m.partition.rows_held && adaptor && !adaptor->rows_can_be_held())
     throw std::logic_error("held bond rows in a run whose events read other ranks' rows");
-  m.partition.refining = adaptor != nullptr;
 
   RunView view(dk, m, vv, adaptor.get(), dir, opt.write_files, ts.steps, t_start);
   // Observers, in the order they see each step: the tip before the history row that shows it;
