@@ -4,12 +4,14 @@
 // holds and any other split's held rows.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <functional>
 #include <map>
 
 #include "input/deck_builder.hpp"
 #include "model/model_state.hpp"
+#include "discretize/families.hpp"
 #include "parallel/held_rows.hpp"
 #include "setup/build_model.hpp"
 
@@ -57,7 +59,6 @@ class StringStream final : public ArchiveStream {
 TEST(HeldRows, KeptRowsAreTheWholeRowsUnderTheBondNames) {
   Model m = plate();
   const BondFamilies whole = m.bonds;
-  ASSERT_TRUE(can_hold_rows(whole));
   std::vector<std::uint32_t> keep;
   for (std::uint32_t i = 0; i < m.nodes.size(); ++i)
     if (i % 3 != 1) keep.push_back(i);
@@ -106,6 +107,101 @@ TEST(HeldRows, RowsGrownByFamiliesAreTheFamiliesMembers) {
   for (char c : rows) held += c != 0;
   EXPECT_GT(held, bf.end(0) - bf.begin(0) + 1);  // beyond the corner's own family
   EXPECT_LT(held, n);                            // and not the whole plate
+}
+
+// After a refinement event a rank holds its rows again where they lie in its arrays (rebuilt rows
+// sit at the end): each kept row keeps its contents under its name, the others are let go, and
+// the whole model's row lengths are recorded.
+TEST(HeldRows, ReheldRowsKeepTheirContentsWhereverTheyLie) {
+  Model m = plate();
+  const std::size_t n = m.nodes.size();
+  // Rows 10 ... 29 searched again, as an event does: they move to the end of the arrays.
+  std::vector<char> moved(n, 0);
+  for (std::size_t i = 10; i < 30; ++i) moved[i] = 1;
+  m.bonds.neighbor.reserve(2 * m.bonds.neighbor.size());  // room to append, not compact
+  rebuild_rows(m.bonds, m.nodes, m.quadrature, moved);
+  const BondFamilies whole = m.bonds;
+  ASSERT_FALSE(whole.ends.empty());
+  RowPartition p;
+  p.owner.assign(n, 0);
+  p.mine.assign(n, 0);
+  for (std::size_t i = 0; i < n; ++i) p.mine[i] = i % 3 != 1;
+  p.nodes = n;
+  p.bonds = m.bonds.neighbor.size();
+  p.rows_held = true;
+  p.held.assign(n, 1);
+  p.whole_offsets.assign(n + 1, 0);
+  for (std::size_t i = 0; i < n; ++i)
+    p.whole_offsets[i + 1] = p.whole_offsets[i] + whole.end(i) - whole.begin(i);
+  const std::vector<std::uint64_t> lengths = p.whole_offsets;
+  rehold_rows(p, m.nodes, m.bonds, m.quadrature, HeldReach::Own);
+  const BondFamilies& h = m.bonds;
+  EXPECT_EQ(p.whole_offsets, lengths);
+  std::uint64_t kept = 0;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const bool held = p.mine[i];
+    EXPECT_EQ(p.held[i], held);
+    ASSERT_EQ(h.end(i) - h.begin(i), held ? whole.end(i) - whole.begin(i) : 0u) << "row " << i;
+    for (std::uint64_t g = whole.begin(i); held && g < whole.end(i); ++g) {
+      std::uint64_t k = 0;
+      ASSERT_TRUE(h.named(whole.name(i, g), k));
+      EXPECT_EQ(h.neighbor[k], whole.neighbor[g]);
+      EXPECT_EQ(h.inv_length[k], whole.inv_length[g]);
+      EXPECT_EQ(h.beta[k], whole.beta[g]);
+      ++kept;
+    }
+  }
+  EXPECT_EQ(kept, h.num_bonds());
+  EXPECT_EQ(h.neighbor.size(), kept);  // nothing left between the kept rows
+}
+
+// The dual-horizon pairing's held rows: every family that holds one of a rank's nodes (whose
+// memberships its nodes gather), also across a level interface where horizons differ.
+TEST(HeldRows, RadiusReachHoldsEveryFamilyThatHoldsARow) {
+  DeckBuilder b;
+  b.set("model.dimension", 2)
+      .set("material.youngs_modulus", 1.0)
+      .set("material.density", 1.0)
+      .set("material.critical_stretch", 0.01)
+      .set("discretization.spacing", 1.0)
+      .set("discretization.horizon_factor", 3.0)
+      .set("discretization.body.box.min", std::vector<double>{0.0, 0.0})
+      .set("discretization.body.box.max", std::vector<double>{20.0, 12.0})
+      .set("adapt.max_level", 1)
+      .append("adapt.initial_refinement",
+              DeckBuilder()
+                  .set("region.box.min", std::vector<double>{8.0, 0.0})
+                  .set("region.box.max", std::vector<double>{20.0, 12.0})
+                  .set("level", 1))
+      .set("solver.steps", 1);
+  const Model m = build_model(b.build("refined half"));
+  const BondFamilies& bf = m.bonds;
+  const std::size_t n = m.nodes.size();
+  // The nodes on either side of the level interface, at mid-height.
+  std::size_t fine = n, coarse = n;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!(m.nodes.flags[i] & kActive) || std::abs(m.nodes.x[1][i] - 6.0) > 0.6) continue;
+    const double x = m.nodes.x[0][i];
+    if (m.nodes.level[i] == 1 && (fine == n || x < m.nodes.x[0][fine])) fine = i;
+    if (m.nodes.level[i] == 0 && (coarse == n || x > m.nodes.x[0][coarse])) coarse = i;
+  }
+  ASSERT_LT(fine, n);
+  ASSERT_LT(coarse, n);
+  ASSERT_LT(m.nodes.x[0][fine] - m.nodes.x[0][coarse], 1.0);
+  for (std::size_t own : {fine, coarse}) {
+    std::vector<char> rows(n, 0);
+    rows[own] = 1;
+    grow_held_rows(m.nodes, m.quadrature, rows, HeldReach::Radius);
+    std::size_t families = 0;
+    for (std::size_t j = 0; j < n; ++j)
+      for (std::uint64_t k = bf.begin(j); k < bf.end(j); ++k)
+        if (bf.neighbor[k] == own) {
+          EXPECT_TRUE(rows[j]) << "the family of " << j << " holds " << own;
+          ++families;
+        }
+    for (std::uint64_t k = bf.begin(own); k < bf.end(own); ++k) EXPECT_TRUE(rows[bf.neighbor[k]]);
+    EXPECT_GT(families, 10u);
+  }
 }
 
 // A checkpoint of held rows keeps each rank's own rows in a piece: the pieces of two "ranks"

@@ -137,7 +137,8 @@ void Adaptor::refine(const std::vector<std::uint32_t>& parents, std::size_t iden
   // Every rank holds the rows the event rebuilt until it keeps its own again.
   const StableStep s = stable_time_step(m_, ev.stats.rebuilt);
   if (m_.partition.rows_held)
-    rehold_rows(m_.partition, m_.nodes, m_.bonds, m_.quadrature, m_.formulation.state_based());
+    rehold_rows(m_.partition, m_.nodes, m_.bonds, m_.quadrature,
+                held_reach(m_.formulation.state_based(), m_.formulation.dual_horizon));
   ev.bonds = whole_bond_count(m_.partition, m_.bonds);
   ev.dt_stable = s.dt;
   events_.push_back(ev);
@@ -220,10 +221,10 @@ bool Adaptor::coarsen_quiet(const std::vector<double>& E, double alpha) {
 
 bool Adaptor::rows_can_be_held() const {
   // What reads rows beyond an event's window: coarsening's sweeps, relaxed events' and the
-  // energy correction's force passes, the dual pairing's transpose, surface corrections and the
-  // interface fit around the window.
+  // energy correction's force passes, surface corrections and the interface fit around the
+  // window.
   return !spec_.coarsen && spec_.relax_sweeps == 0 && !spec_.conserve_energy &&
-         !spec_.interface_fit && !spec_.ghost_correction && !m_.formulation.dual_horizon &&
+         !spec_.interface_fit && !spec_.ghost_correction &&
          m_.surface_correction == SurfaceCorrection::None && !m_.interface_fit;
 }
 

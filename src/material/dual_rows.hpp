@@ -12,13 +12,16 @@
 namespace periadapt {
 
 using BrokenMemberships = std::vector<std::pair<std::uint64_t, std::uint32_t>>;  // (bond, owner)
+// A gathered break in a row this rank does not hold (held bond rows): counted, not applied.
+inline constexpr std::uint64_t kBondNotHeld = ~std::uint64_t{0};
 
 struct DualRows {
   const std::vector<std::uint32_t>* first = nullptr;
   const std::vector<std::uint32_t>* rows = nullptr;
   const char* own = nullptr;
   // LPS, whose dilatations read every bond's state: turns this rank's breaks, found before the
-  // dilatation pass, into every rank's, sorted (collective).
+  // dilatation pass, into every rank's, sorted (collective); those in rows this rank does not
+  // hold come back as kBondNotHeld.
   std::function<void(BrokenMemberships&)> gather_breaks;
 
   std::size_t count(std::size_t n, bool gathered) const {

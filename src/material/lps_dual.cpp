@@ -51,6 +51,7 @@ std::size_t lps_dual_forces(NodeSet& ns, BondFamilies& bf, InfluenceShape shape,
     std::sort(newly.begin(), newly.end());
     if (split.gather_breaks) split.gather_breaks(newly);
     for (const auto& [k, o] : newly) {
+      if (k == kBondNotHeld) continue;  // its row's owner shares the row's weight after the pass
       ns.broken_weight[o] += static_cast<double>(bf.beta[k]) * ns.volume[bf.neighbor[k]];
       bf.beta[k] = -bf.beta[k];
       if (log) log->push_back(k);

@@ -185,7 +185,8 @@ std::vector<std::uint32_t> split_restored_rows(Model& m, const std::vector<std::
   p.nodes = 0;
   refresh_partition(p, m.nodes, sizes);
   std::vector<char> keep(p.mine.begin(), p.mine.end());
-  if (m.formulation.state_based()) grow_by_families(m.nodes, m.quadrature, keep, 2);
+  grow_held_rows(m.nodes, m.quadrature, keep,
+                 held_reach(m.formulation.state_based(), m.formulation.dual_horizon));
   std::vector<std::uint32_t> rows;
   for (std::size_t i = 0; i < keep.size(); ++i)
     if (keep[i]) rows.push_back(static_cast<std::uint32_t>(i));
@@ -213,7 +214,7 @@ void restore_bonds(ArchiveReader& r, Model& m, const PieceReader& read_piece) {
     }
     // A checkpoint of a run that held the whole arrays (a serial one), continued with held rows.
     if (m.partition.refining) {
-      if (!can_hold_rows(whole) || whole.keeps_state != m.bonds.keeps_state)
+      if (whole.keeps_state != m.bonds.keeps_state)
         throw ArchiveError("the checkpoint's bond rows differ from the model's (another model?)");
       std::vector<std::uint64_t> lengths(n + 1, 0);
       for (std::size_t i = 0; i < n; ++i) lengths[i + 1] = lengths[i] + whole.end(i) - whole.begin(i);
@@ -223,7 +224,7 @@ void restore_bonds(ArchiveReader& r, Model& m, const PieceReader& read_piece) {
       m.partition.whole_capacity = room;
       return;
     }
-    if (!can_hold_rows(whole) || !whole.ends.empty())
+    if (!whole.ends.empty())
       throw ArchiveError("the checkpoint's bond rows differ from the model's (another model?)");
     check_held_layout(m, whole.offsets, whole.keeps_state);
     for (std::size_t i = 0; i < n; ++i) {
@@ -274,6 +275,7 @@ void restore_bonds(ArchiveReader& r, Model& m, const PieceReader& read_piece) {
     p.whole_capacity = room;
     p.bonds = bf.neighbor.size();
     read_pieces(r, bf, offsets, false, read_piece);
+    if (m.formulation.dual_horizon) build_transpose(bf);
     return;
   }
   if (held) {
@@ -298,6 +300,8 @@ void restore_bonds(ArchiveReader& r, Model& m, const PieceReader& read_piece) {
   bf.offsets = std::move(offsets);
   bf.close_contiguous();
   read_pieces(r, bf, bf.offsets, true, read_piece);
+  // Pieces keep rows only: the dual-horizon transpose is made from them.
+  if (m.formulation.dual_horizon) build_transpose(bf);
 }
 }  // namespace
 

@@ -1,16 +1,47 @@
 #include "parallel/held_rows.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <stdexcept>
 #include <type_traits>
 
+#include "core/cell_grid.hpp"
+#include "discretize/partial_volume.hpp"
 #include "parallel/mpi_env.hpp"
 
 namespace periadapt {
 
-bool can_hold_rows(const BondFamilies& bf) {
-  return bf.t_offsets.empty() && bf.dual_force.empty();
+HeldReach held_reach(bool state_based, bool dual_horizon) {
+  if (dual_horizon) return HeldReach::Radius;
+  return state_based ? HeldReach::TwoFamilies : HeldReach::Own;
+}
+
+void grow_held_rows(const NodeSet& ns, const QuadratureSpec& q, std::vector<char>& rows,
+                    HeldReach reach) {
+  if (reach == HeldReach::TwoFamilies) grow_by_families(ns, q, rows, 2);
+  if (reach != HeldReach::Radius) return;
+  double hmax = 0, dxmax = 0;
+  for (std::size_t i = 0; i < ns.size(); ++i)
+    if (ns.flags[i] & kActive) {
+      hmax = std::max(hmax, ns.horizon[i]);
+      dxmax = std::max(dxmax, ns.spacing[i]);
+    }
+  const double r = quadrature_search_radius(q.rule, ns.dim, hmax, dxmax) * (1 + 1e-9);
+  if (!(r > 0)) return;
+  const CellGrid grid(ns.dim, {ns.x[0].data(), ns.x[1].data(), ns.x[2].data()}, ns.size(), r);
+  std::vector<char> grown(rows);
+  std::vector<std::uint32_t> marked;
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    if (rows[i]) marked.push_back(static_cast<std::uint32_t>(i));
+#pragma omp parallel for schedule(dynamic, 256)
+  for (std::size_t k = 0; k < marked.size(); ++k) {
+    const std::uint32_t i = marked[k];
+    grid.for_each_within({ns.x[0][i], ns.x[1][i], ns.x[2][i]}, r, [&](std::uint32_t j, double) {
+      if (ns.flags[j] & kActive) std::atomic_ref<char>(grown[j]).store(1, std::memory_order_relaxed);
+    });
+  }
+  rows = std::move(grown);
 }
 
 namespace {
@@ -25,6 +56,12 @@ void keep_rows(std::vector<T>& a, const BondFamilies& bf, const std::vector<std:
   for (std::uint32_t i : keep) h.insert(h.end(), a.begin() + bf.begin(i), a.begin() + bf.end(i));
   std::vector<T>().swap(a);
   a = std::move(h);
+}
+
+// A dual-horizon transpose names bond slots: made again over rows that moved.
+void retranspose(BondFamilies& bf) {
+  bf.dual_force.clear();
+  if (!bf.t_offsets.empty()) build_transpose(bf);
 }
 
 // Keeps the rows `keep` (ascending, all present here) in contiguous arrays.
@@ -51,6 +88,7 @@ void compact_to(RowPartition& p, BondFamilies& bf, const std::vector<std::uint32
   p.held_row_count = keep.size();
   // The partition stays the one these rows came from (refresh_partition compares the size).
   p.bonds = bf.neighbor.size();
+  retranspose(bf);
 }
 
 // Keeps the rows `keep` (ascending, all present here) where they are: each slides down over the
@@ -95,6 +133,7 @@ void compact_in_place(RowPartition& p, BondFamilies& bf, const std::vector<std::
   p.rows_held = true;
   p.held_row_count = keep.size();
   p.bonds = bf.neighbor.size();
+  retranspose(bf);
 }
 
 // Whole row lengths as row begins (a prefix sum).
@@ -186,7 +225,6 @@ class RowReader {
 }  // namespace
 
 void hold_bond_rows(RowPartition& p, BondFamilies& bf, const std::vector<std::uint32_t>& keep) {
-  if (!can_hold_rows(bf)) throw std::logic_error("held bond rows need arrays without a transpose");
   std::vector<std::uint64_t> whole =
       row_begins(bf.num_nodes(), [&](std::size_t i) { return bf.end(i) - bf.begin(i); });
   p.whole_capacity = std::max<std::uint64_t>(whole.back(), bf.neighbor.capacity());
@@ -217,7 +255,7 @@ void publish_rows(RowPartition& p, BondFamilies& bf, const std::vector<std::uint
 }
 
 void rehold_rows(RowPartition& p, const NodeSet& ns, BondFamilies& bf, const QuadratureSpec& q,
-                 bool region) {
+                 HeldReach reach) {
   const std::size_t n = ns.size();
   if (bf.num_nodes() != n) throw std::logic_error("held rows: the arrays miss the new nodes' rows");
   // Rows this rank has: whole arrays, or the held and published ones and the event's new rows.
@@ -234,7 +272,7 @@ void rehold_rows(RowPartition& p, const NodeSet& ns, BondFamilies& bf, const Qua
     refresh_partition(p, ns, sizes);
   }
   std::vector<char> keep(p.mine.begin(), p.mine.end());
-  if (region) grow_by_families(ns, q, keep, 2);
+  grow_held_rows(ns, q, keep, reach);
   // What this rank lacks comes from the row's previous owner, which held it: each rank asks
   // those owners, and they answer, point to point (a repartition moves many rows).
   const auto P = static_cast<std::size_t>(mpi::size());
@@ -266,7 +304,7 @@ void rehold_rows(RowPartition& p, const NodeSet& ns, BondFamilies& bf, const Qua
 }
 
 BondFamilies build_held_families(RowPartition& p, const NodeSet& ns, const QuadratureSpec& q,
-                                 bool region) {
+                                 HeldReach reach) {
   const std::size_t n = ns.size();
   // The rows' sizes alone (offsets, no bond arrays) are what the split weighs: each rank
   // counts a slice of the ids, and every rank gets every count.
@@ -286,8 +324,7 @@ BondFamilies build_held_families(RowPartition& p, const NodeSet& ns, const Quadr
   p.active = true;
   refresh_partition(p, ns, sizes);
   std::vector<char> keep(p.mine.begin(), p.mine.end());
-  // LPS: the rows around its own (dilatations) and around those (the mutual-bond reach).
-  if (region) grow_by_families(ns, q, keep, 2);
+  grow_held_rows(ns, q, keep, reach);
   BondFamilies bf = build_families(ns, q, 0.0, &keep);
   std::size_t held = 0;
   for (char c : keep) held += c != 0;

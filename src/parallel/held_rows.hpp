@@ -1,8 +1,8 @@
 #pragma once
-// Held bond rows: in a distributed run without refinement events, nothing but a rank's own force
-// passes reads its bond arrays, so each rank keeps the rows those passes read (its own rows; for
-// LPS its region's, whose families give the dilatations and the mutual-bond reach its rows use)
-// and frees the rest, the bulk of a model's memory (16 B per bond against about 270 B per node).
+// Held bond rows: in a distributed run, nothing but a rank's own force passes and refinement
+// events read its bond arrays, so each rank keeps the rows its passes read (its own rows and
+// those HeldReach adds) and frees the rest, the bulk of a model's memory (16 B per bond against
+// about 270 B per node); an event gathers the rows it reads onto every rank first.
 // The rows keep their contents and order, so a bond's name (BondFamilies::name: its row and its
 // place there) is the same on every rank that holds its row; a checkpoint keeps each rank's own
 // rows in a piece of its own (model/model_state.hpp), laid out by the whole model's row lengths
@@ -17,11 +17,17 @@
 
 namespace periadapt {
 
-// Whether the arrays are of a shape held rows support: no dual-horizon transpose.
-bool can_hold_rows(const BondFamilies& bf);
+// Which rows a rank holds besides its own: none (plain PMB and the history laws), those within
+// two families of them (LPS: the neighbours' dilatations and their mutual-bond reach), or every
+// row within the largest search radius (the dual-horizon pairing: the families that hold one of
+// its nodes, whose memberships its nodes gather, and, being within that radius, its
+// neighbours').
+enum class HeldReach { Own, TwoFamilies, Radius };
+HeldReach held_reach(bool state_based, bool dual_horizon);
 
 // Keeps the rows `keep` (ascending) of whole arrays and empties the others, in contiguous
-// arrays; records the whole model's row begins in `p` (rows_held).
+// arrays; records the whole model's row begins in `p` (rows_held). A dual-horizon transpose is
+// made again over the kept rows.
 void hold_bond_rows(RowPartition& p, BondFamilies& bf, const std::vector<std::uint32_t>& keep);
 
 // Refinement events with held rows (p.refining). An event reads and rebuilds the rows near its
@@ -31,17 +37,21 @@ void publish_rows(RowPartition& p, BondFamilies& bf, const std::vector<std::uint
 
 // After an event (or, from whole arrays, at the first pass): the whole model's row lengths
 // (every rank holds the rows the event rebuilt), owners for the new nodes (or a repartition),
-// then each rank keeps its own rows and, with `region` (LPS), those within two families of them,
-// fetching what it lacks from the rows' previous owners (collective).
+// then each rank keeps its own rows and those `reach` adds, fetching what it lacks from the
+// rows' previous owners (collective).
 void rehold_rows(RowPartition& p, const NodeSet& ns, BondFamilies& bf, const QuadratureSpec& q,
-                 bool region);
+                 HeldReach reach);
+
+// Marks in `rows` (per node) the rows `reach` adds to the marked ones.
+void grow_held_rows(const NodeSet& ns, const QuadratureSpec& q, std::vector<char>& rows,
+                    HeldReach reach);
 
 // A run that holds its rows from the start (no rank ever holds the whole arrays): splits the
 // rows over the ranks by their sizes (the family search's count pass, storing no bond), then
-// searches only this rank's rows and, with `region` (LPS), the rows within two families of them.
-// Fills `p` (active, owners, rows_held); collective.
+// searches only this rank's rows and those `reach` adds. Fills `p` (active, owners, rows_held);
+// collective.
 BondFamilies build_held_families(RowPartition& p, const NodeSet& ns, const QuadratureSpec& q,
-                                 bool region);
+                                 HeldReach reach);
 
 // After the set-up's per-row passes over held rows: every rank takes each row's damage weights
 // from its owner, and the pre-crack count is the sum of the owners' cut entries (collective).

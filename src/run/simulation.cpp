@@ -55,7 +55,7 @@ void remove_earlier_run_outputs(const std::string& dir) {
 
 // A distributed explicit run whose ranks hold their own bond rows from the set-up on
 // (parallel/held_rows.hpp): owned integration, and nothing that reads another rank's rows
-// (dual-horizon memberships, contact, impactors, the overlay; of refinement, what
+// (contact, impactors, the overlay; of refinement, what
 // Adaptor::rows_can_be_held names) or corrects surfaces over the whole model at set-up. A restart
 // builds the same rows and reads their bonds from the checkpoint; an adaptive one, whose node
 // set is the checkpoint's, splits the checkpoint's rows afresh and reads its own. Runs refined
@@ -66,7 +66,7 @@ bool holds_rows_from_setup(const Deck& dk) {
                                            a.relax_sweeps == 0 && !a.conserve_energy &&
                                            !a.interface_fit);
   return mpi::distributed() && dk.owned_integration && events_allow && !a.ghost_correction &&
-         !dk.dual_horizon && !dk.contact.enabled && dk.impactors.empty() && !dk.pdro.enabled &&
+         !dk.contact.enabled && dk.impactors.empty() && !dk.pdro.enabled &&
          dk.surface_correction == SurfaceCorrection::None;
 }
 
@@ -138,11 +138,12 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
   RunResult res;
   Model& m = res.model;
   if (holds_rows_from_setup(dk)) {
-    const bool region = Formulation::named(dk.formulation, false)->state_based();
+    const HeldReach reach =
+        held_reach(Formulation::named(dk.formulation, false)->state_based(), dk.dual_horizon);
     m = build_model(dk, [&](const NodeSet& ns, const QuadratureSpec& q, RowPartition& p) {
       p.method = dk.partition;
       p.rebalance_threshold = dk.rebalance_threshold;
-      return build_held_families(p, ns, q, region);
+      return build_held_families(p, ns, q, reach);
     });
     share_held_setup(m.partition, m.nodes, m.bonds, m.precrack_bonds);
   } else {

@@ -61,21 +61,25 @@ std::size_t distributed_forces(Model& m, bool allow_breaking, const std::vector<
   pass.W = W;
   pass.breakable_stretch = stretch_measure(m);
   DualRows split;
+  std::vector<std::uint32_t> held_hits;  // rows with a gathered break (whose weights owners share)
   if (dual) {
     split.first = &rows_around(m.partition, m.bonds, true);
     split.rows = &m.partition.owned;
     split.own = m.partition.mine.data();
-    if (gathered) split.gather_breaks = [](BrokenMemberships& b) {
-      std::vector<std::uint64_t> bonds;
-      std::vector<std::uint32_t> owners;
-      for (const auto& [k, o] : b) {
-        bonds.push_back(k);
-        owners.push_back(o);
-      }
-      const std::vector<std::uint64_t> all_bonds = mpi::all_gather(bonds);
-      const std::vector<std::uint32_t> all_owners = mpi::all_gather(owners);
+    // Breaks travel by name (row and place), which ranks holding other rows read alike.
+    if (gathered) split.gather_breaks = [&](BrokenMemberships& b) {
+      const BondFamilies& bf = m.bonds;
+      std::vector<std::uint64_t> names;
+      for (const auto& [k, o] : b) names.push_back(bf.name(o, k));
+      const std::vector<std::uint64_t> all_names = mpi::all_gather(names);
       b.clear();
-      for (std::size_t q = 0; q < all_bonds.size(); ++q) b.emplace_back(all_bonds[q], all_owners[q]);
+      for (std::uint64_t name : all_names) {
+        const auto o = static_cast<std::uint32_t>(name >> 32);
+        std::uint64_t k = kBondNotHeld;
+        if (!bf.named(name, k)) k = kBondNotHeld;
+        b.emplace_back(k, o);
+        held_hits.push_back(o);
+      }
       std::sort(b.begin(), b.end());
     };
     pass.split = &split;
@@ -91,7 +95,13 @@ std::size_t distributed_forces(Model& m, bool allow_breaking, const std::vector<
   if (history)
     for (std::uint32_t i : mine)
       before.insert(before.end(), bf.state.begin() + bf.begin(i), bf.state.begin() + bf.end(i));
-  material_forces(m.nodes, bf, material_context(m), pass);
+  const std::size_t broken_in_pass = material_forces(m.nodes, bf, material_context(m), pass);
+  if (gathered && m.partition.rows_held) {
+    // A gathered break in a row this rank does not hold left that row's weight to its owner.
+    std::sort(held_hits.begin(), held_hits.end());
+    held_hits.erase(std::unique(held_hits.begin(), held_hits.end()), held_hits.end());
+    share_owned_values(m.partition, m.nodes.broken_weight, &held_hits);
+  }
   std::vector<std::uint64_t> changed_bonds;
   std::vector<double> changed_states;
   if (history) {
@@ -116,7 +126,7 @@ std::size_t distributed_forces(Model& m, bool allow_breaking, const std::vector<
     m.pdro.counters->checks = checks;
     m.pdro.counters->breaks = breaks;
   }
-  const std::size_t broken = shared_already.size() +
+  const std::size_t broken = (gathered ? broken_in_pass : 0) +
                              share_force_pass(m.partition, m.nodes, m.bonds,
                                               rows ? mine : m.partition.owned, broken_here, log, W,
                                               stretch_measure(m));
@@ -132,11 +142,14 @@ std::size_t distributed_forces(Model& m, bool allow_breaking, const std::vector<
   // read from here on: its own, and for LPS its region's (dilatations, mutual-bond reach).
   RowPartition& part = m.partition;
   if (part.hold_rows && !part.rows_held && part.ghost_mode &&
-      part.region_generation == part.generation && can_hold_rows(m.bonds)) {
+      part.region_generation == part.generation) {
     if (part.refining)
-      rehold_rows(part, m.nodes, m.bonds, m.quadrature, m.formulation.state_based());
+      rehold_rows(part, m.nodes, m.bonds, m.quadrature,
+                  held_reach(m.formulation.state_based(), m.formulation.dual_horizon));
     else
-      hold_bond_rows(part, m.bonds, m.formulation.state_based() ? part.region : part.owned);
+      hold_bond_rows(part, m.bonds,
+                     m.formulation.state_based() || m.formulation.dual_horizon ? part.region
+                                                                               : part.owned);
   }
   // Every rank holds the whole state: each adds the impactors' contact to the shared forces
   // and sums the impactors' reactions over all nodes in the serial run's order.
