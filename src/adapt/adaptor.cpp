@@ -275,10 +275,11 @@ bool Adaptor::step() {
   }
   if (spec_.stretch_fraction && check_step) {
     const std::vector<char>& refinable = this->refinable();
-    // Owned integration: each rank examines its own rows (their stretches are its own, their
-    // neighbours in its region), and the ranks gather the nodes found, in the serial order.
+    // Owned integration or held rows: each rank examines its own rows (their stretches are its
+    // own, their neighbours in its region), and the ranks gather the nodes found, in the serial
+    // order.
     std::vector<std::uint32_t> ids;
-    if (vv_.owned_integration()) {
+    if (vv_.owned_integration() || m_.partition.rows_held) {
       ids = mpi::all_gather(stretch_trigger(m_, spec_, *spec_.stretch_fraction, refinable,
                                             &m_.partition.owned));
       std::sort(ids.begin(), ids.end());

@@ -55,7 +55,7 @@ void remove_earlier_run_outputs(const std::string& dir) {
 
 // A distributed explicit run whose ranks hold their own bond rows from the set-up on
 // (parallel/held_rows.hpp): owned integration, and nothing that reads another rank's rows
-// (contact, impactors, the overlay; of refinement, what
+// (the overlay, which re-checks a bond over both ends' families; of refinement, what
 // Adaptor::rows_can_be_held names) or corrects surfaces over the whole model at set-up. A restart
 // builds the same rows and reads their bonds from the checkpoint; an adaptive one, whose node
 // set is the checkpoint's, splits the checkpoint's rows afresh and reads its own. Runs refined
@@ -66,8 +66,7 @@ bool holds_rows_from_setup(const Deck& dk) {
                                            a.relax_sweeps == 0 && !a.conserve_energy &&
                                            !a.interface_fit);
   return mpi::distributed() && dk.owned_integration && events_allow && !a.ghost_correction &&
-         !dk.contact.enabled && dk.impactors.empty() && !dk.pdro.enabled &&
-         dk.surface_correction == SurfaceCorrection::None;
+         !dk.pdro.enabled && dk.surface_correction == SurfaceCorrection::None;
 }
 
 }  // namespace
@@ -202,8 +201,6 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
   VelocityVerlet vv(m, ts.dt);
   if (dk.multirate) vv.set_multirate(dk.safety, dk.multirate_ratio);
   if (m.partition.active && dk.owned_integration) vv.enable_owned_integration();
-  if (m.partition.rows_held && !vv.owned_integration())
-    throw std::logic_error("held bond rows without owned integration");
   if (!restart) vv.initialize();
   std::unique_ptr<Adaptor> adaptor;
   if (dk.adapt.enabled) {
@@ -215,7 +212,10 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
   }
   // Each rank keeps the bond rows its own passes read; refinement events gather the rows they
   // read onto every rank first.
-  m.partition.hold_rows = vv.owned_integration() && (!adaptor || adaptor->rows_can_be_held());
+  // (Contact and impactors act between nodes: with them every rank integrates every node, from
+  // every row's force, and still needs only its own rows' bonds.)
+  m.partition.hold_rows = m.partition.active && dk.owned_integration && !dk.pdro.enabled &&
+                          !m.ghost.enabled && (!adaptor || adaptor->rows_can_be_held());
   if (m.partition.rows_held && adaptor && !adaptor->rows_can_be_held())
     throw std::logic_error("held bond rows in a run whose events read other ranks' rows");
 

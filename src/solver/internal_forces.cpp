@@ -138,19 +138,12 @@ std::size_t distributed_forces(Model& m, bool allow_breaking, const std::vector<
       if (m.bonds.named(all_bonds[q], k)) m.bonds.state[k] = all_states[q];
     }
   }
-  // With the partition and region made, a run that asked for it keeps only the rows its passes
-  // read from here on: its own, and for LPS its region's (dilatations, mutual-bond reach).
+  // With the partition made, a run that asked for it keeps only the rows its passes read from
+  // here on: its own and those its formulation reaches (held_reach).
   RowPartition& part = m.partition;
-  if (part.hold_rows && !part.rows_held && part.ghost_mode &&
-      part.region_generation == part.generation) {
-    if (part.refining)
-      rehold_rows(part, m.nodes, m.bonds, m.quadrature,
-                  held_reach(m.formulation.state_based(), m.formulation.dual_horizon));
-    else
-      hold_bond_rows(part, m.bonds,
-                     m.formulation.state_based() || m.formulation.dual_horizon ? part.region
-                                                                               : part.owned);
-  }
+  if (part.hold_rows && !part.rows_held)
+    rehold_rows(part, m.nodes, m.bonds, m.quadrature,
+                held_reach(m.formulation.state_based(), m.formulation.dual_horizon));
   // Every rank holds the whole state: each adds the impactors' contact to the shared forces
   // and sums the impactors' reactions over all nodes in the serial run's order.
   if (!m.impactors.empty()) add_impactor_forces(m.impactors, m.nodes, rows, W);
