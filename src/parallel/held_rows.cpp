@@ -136,6 +136,41 @@ void compact_in_place(RowPartition& p, BondFamilies& bf, const std::vector<std::
   retranspose(bf);
 }
 
+// Keeps the rows `keep` (ascending, all present here) and lets the others go: their entries
+// become slack, the slack at the end of the arrays is cut off, and the arrays are compacted in
+// place once the slack passes an eighth of the kept bonds, so that most events cost the rows
+// they touched, not a pass over every bond (and the event's own search, which compacts into
+// fresh arrays past a quarter, seldom has to).
+void release_rows(RowPartition& p, BondFamilies& bf, const std::vector<std::uint32_t>& keep) {
+  const std::size_t n = bf.num_nodes();
+  if (bf.ends.empty()) bf.ends.assign(bf.offsets.begin() + 1, bf.offsets.end());
+  std::vector<char> kept(n, 0);
+  for (std::uint32_t i : keep) kept[i] = 1;
+  std::uint64_t end = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (kept[i]) {
+      end = std::max(end, bf.ends[i]);
+      continue;
+    }
+    bf.live -= bf.ends[i] - bf.offsets[i];
+    bf.offsets[i] = bf.ends[i] = 0;
+  }
+  if (end - bf.live > bf.live / 8) {
+    compact_in_place(p, bf, keep);
+    return;
+  }
+  bf.neighbor.resize(end);
+  bf.inv_length.resize(end);
+  bf.beta.resize(end);
+  if (bf.keeps_state) bf.state.resize(end);
+  bf.offsets[n] = end;
+  p.held = std::move(kept);
+  p.rows_held = true;
+  p.held_row_count = keep.size();
+  p.bonds = bf.neighbor.size();
+  retranspose(bf);
+}
+
 // Whole row lengths as row begins (a prefix sum).
 template <class Length>
 std::vector<std::uint64_t> row_begins(std::size_t n, Length length) {
@@ -295,9 +330,9 @@ void rehold_rows(RowPartition& p, const NodeSet& ns, BondFamilies& bf, const Qua
     if (keep[i]) kept.push_back(static_cast<std::uint32_t>(i));
   p.whole_capacity = whole.back();
   // From whole arrays (the first pass) a fresh copy of the kept rows frees the rest; held arrays
-  // are compacted where they are.
+  // let the others' rows go where they are.
   if (p.rows_held)
-    compact_in_place(p, bf, kept);
+    release_rows(p, bf, kept);
   else
     compact_to(p, bf, kept);
   p.whole_offsets = std::move(whole);
