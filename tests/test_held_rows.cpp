@@ -18,20 +18,26 @@
 using namespace periadapt;
 
 namespace {
-// A pre-cracked 12 x 9 plate (delta = 3 dx), so that rows differ in length and in broken bonds.
+// A W x H plate of unit spacing (delta = 3 dx).
+DeckBuilder plate_deck(double W, double H) {
+  DeckBuilder b;
+  b.set("model.dimension", 2)
+      .set("material.youngs_modulus", 1.0)
+      .set("material.density", 1.0)
+      .set("material.critical_stretch", 0.01)
+      .set("discretization.spacing", 1.0)
+      .set("discretization.horizon_factor", 3.0)
+      .set("discretization.body.box.min", std::vector<double>{0.0, 0.0})
+      .set("discretization.body.box.max", std::vector<double>{W, H})
+      .set("solver.steps", 1);
+  return b;
+}
+
+// A pre-cracked 12 x 9 plate, so that rows differ in length and in broken bonds.
 Model plate() {
-  return build_model(DeckBuilder()
-                         .set("model.dimension", 2)
-                         .set("material.youngs_modulus", 1.0)
-                         .set("material.density", 1.0)
-                         .set("material.critical_stretch", 0.01)
-                         .set("discretization.spacing", 1.0)
-                         .set("discretization.horizon_factor", 3.0)
-                         .set("discretization.body.box.min", std::vector<double>{0.0, 0.0})
-                         .set("discretization.body.box.max", std::vector<double>{12.0, 9.0})
+  return build_model(plate_deck(12, 9)
                          .append("cracks", DeckBuilder().set("segment", std::vector<std::vector<double>>{
                                                                             {0, 4.5}, {6, 4.5}}))
-                         .set("solver.steps", 1)
                          .build("held rows plate"));
 }
 
@@ -170,23 +176,14 @@ TEST(HeldRows, ReheldRowsKeepTheirContentsWhereverTheyLie) {
 // The dual-horizon pairing's held rows: every family that holds one of a rank's nodes (whose
 // memberships its nodes gather), also across a level interface where horizons differ.
 TEST(HeldRows, RadiusReachHoldsEveryFamilyThatHoldsARow) {
-  DeckBuilder b;
-  b.set("model.dimension", 2)
-      .set("material.youngs_modulus", 1.0)
-      .set("material.density", 1.0)
-      .set("material.critical_stretch", 0.01)
-      .set("discretization.spacing", 1.0)
-      .set("discretization.horizon_factor", 3.0)
-      .set("discretization.body.box.min", std::vector<double>{0.0, 0.0})
-      .set("discretization.body.box.max", std::vector<double>{20.0, 12.0})
-      .set("adapt.max_level", 1)
-      .append("adapt.initial_refinement",
-              DeckBuilder()
-                  .set("region.box.min", std::vector<double>{8.0, 0.0})
-                  .set("region.box.max", std::vector<double>{20.0, 12.0})
-                  .set("level", 1))
-      .set("solver.steps", 1);
-  const Model m = build_model(b.build("refined half"));
+  const Model m = build_model(plate_deck(20, 12)
+                                  .set("adapt.max_level", 1)
+                                  .append("adapt.initial_refinement",
+                                          DeckBuilder()
+                                              .set("region.box.min", std::vector<double>{8.0, 0.0})
+                                              .set("region.box.max", std::vector<double>{20.0, 12.0})
+                                              .set("level", 1))
+                                  .build("refined half"));
   const BondFamilies& bf = m.bonds;
   const std::size_t n = m.nodes.size();
   // The nodes on either side of the level interface, at mid-height.

@@ -58,8 +58,13 @@ void keep_rows(std::vector<T>& a, const BondFamilies& bf, const std::vector<std:
   a = std::move(h);
 }
 
-// A dual-horizon transpose names bond slots: made again over rows that moved.
-void retranspose(BondFamilies& bf) {
+// The end of every way of holding rows: the partition stays the one these rows came from
+// (refresh_partition compares the size), and a dual-horizon transpose, which names bond slots,
+// is made again over the rows where they now lie.
+void finish_hold(RowPartition& p, BondFamilies& bf, std::size_t rows) {
+  p.rows_held = true;
+  p.held_row_count = rows;
+  p.bonds = bf.neighbor.size();
   bf.dual_force.clear();
   if (!bf.t_offsets.empty()) build_transpose(bf);
 }
@@ -84,11 +89,7 @@ void compact_to(RowPartition& p, BondFamilies& bf, const std::vector<std::uint32
   }
   bf.offsets = std::move(offsets);
   bf.close_contiguous();
-  p.rows_held = true;
-  p.held_row_count = keep.size();
-  // The partition stays the one these rows came from (refresh_partition compares the size).
-  p.bonds = bf.neighbor.size();
-  retranspose(bf);
+  finish_hold(p, bf, keep.size());
 }
 
 // Keeps the rows `keep` (ascending, all present here) where they are: each slides down over the
@@ -130,10 +131,7 @@ void compact_in_place(RowPartition& p, BondFamilies& bf, const std::vector<std::
   fit(bf.inv_length);
   fit(bf.beta);
   if (bf.keeps_state) fit(bf.state);
-  p.rows_held = true;
-  p.held_row_count = keep.size();
-  p.bonds = bf.neighbor.size();
-  retranspose(bf);
+  finish_hold(p, bf, keep.size());
 }
 
 // Keeps the rows `keep` (ascending, all present here) and lets the others go: their entries
@@ -165,10 +163,7 @@ void release_rows(RowPartition& p, BondFamilies& bf, const std::vector<std::uint
   if (bf.keeps_state) bf.state.resize(end);
   bf.offsets[n] = end;
   p.held = std::move(kept);
-  p.rows_held = true;
-  p.held_row_count = keep.size();
-  p.bonds = bf.neighbor.size();
-  retranspose(bf);
+  finish_hold(p, bf, keep.size());
 }
 
 // Whole row lengths as row begins (a prefix sum).
