@@ -82,7 +82,7 @@ void row_bonds(const BondFamilies& bf, std::size_t i, F&& f) {
 }
 
 void energy_method(const NodeSet& ns, BondFamilies& bf, InfluenceShape shape, double M,
-                   const std::vector<double>& block_modulus) {
+                   const std::vector<double>& block_modulus, const HeldRowsShare* held) {
   const std::size_t n = ns.size();
   std::vector<double> g(3 * n, 1.0);
 #pragma omp parallel for schedule(dynamic, 256)
@@ -91,6 +91,7 @@ void energy_method(const NodeSet& ns, BondFamilies& bf, InfluenceShape shape, do
     energy_factors(ns, shape, M, block_modulus, i,
                    [&](auto&& visit) { row_bonds(bf, i, visit); }, &g[3 * i]);
   }
+  if (held) held->owners(g, 3);
 #pragma omp parallel for schedule(dynamic, 256)
   for (std::size_t i = 0; i < n; ++i) {
     if (!(ns.flags[i] & kActive)) continue;
@@ -188,7 +189,8 @@ struct MomentBasis {
 void moment_method(const NodeSet& ns, BondFamilies& bf, InfluenceShape shape, double M,
                    const std::vector<double>& block_modulus, bool state_based,
                    const std::vector<std::uint32_t>* fit = nullptr,
-                   const std::vector<std::uint32_t>* update = nullptr) {
+                   const std::vector<std::uint32_t>* update = nullptr,
+                   const HeldRowsShare* held = nullptr) {
   const int D = ns.dim;
   const MomentBasis basis(D, state_based);
   const int T = basis.size();
@@ -281,6 +283,7 @@ void moment_method(const NodeSet& ns, BondFamilies& bf, InfluenceShape shape, do
       }
       for (int t = 0; t < T; ++t) p[T * q + t] = sol[t];
     }
+    if (held) held->owners(p, T);
     double worst = 0;
 #pragma omp parallel for schedule(dynamic, 256) reduction(max : worst)
     for (std::size_t q = 0; q < n_update; ++q) {
@@ -303,6 +306,7 @@ void moment_method(const NodeSet& ns, BondFamilies& bf, InfluenceShape shape, do
         bf.beta[k] = static_cast<float>(static_cast<double>(bf.beta[k]) * g);
       }
     }
+    if (held) worst = held->max(worst);
     if (worst < kTolerance) break;
   }
 }
@@ -475,12 +479,13 @@ std::vector<std::uint32_t> correct_surface_window(
 
 void apply_surface_correction(const NodeSet& ns, BondFamilies& bf, InfluenceShape shape, double M,
                               SurfaceCorrection method, bool state_based,
-                              const std::vector<double>& block_modulus) {
+                              const std::vector<double>& block_modulus,
+                              const HeldRowsShare* held) {
   if (method == SurfaceCorrection::None) return;
   if (method == SurfaceCorrection::Moments && ns.dim > 1)
-    moment_method(ns, bf, shape, M, block_modulus, state_based);
+    moment_method(ns, bf, shape, M, block_modulus, state_based, nullptr, nullptr, held);
   else
-    energy_method(ns, bf, shape, M, block_modulus);
+    energy_method(ns, bf, shape, M, block_modulus, held);
 }
 
 }  // namespace periadapt

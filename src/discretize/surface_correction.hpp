@@ -19,6 +19,7 @@
 // direction multiplier G_i(n) = sum_d a_d n_d^2 + sum_{d<e} b_de n_d^2 n_e^2 (bulk: G = 1) to its
 // current moments and multiplies each bond by (G_i(n) G_j(n))^(omega/2), until no bond changes.
 #include <cstdint>
+#include <functional>
 #include <utility>
 #include <vector>
 
@@ -31,6 +32,14 @@ namespace periadapt {
 
 enum class SurfaceCorrection { None, Energy, Moments };
 
+// Held bond rows (a distributed set-up, parallel/held_rows.hpp): a rank holds some rows only, so
+// the per-node values a correction computes from a row (g, the multipliers) come from the row's
+// owner, and a sweep's largest change is the largest over the ranks.
+struct HeldRowsShare {
+  std::function<void(std::vector<double>& values, int per_node)> owners;
+  std::function<double(double)> max;
+};
+
 // `uniaxial_modulus`: the classical modulus M with W = M eps^2 / 2 under uniaxial strain
 // (P-wave modulus of the dimension and plane condition). 1D models use the energy method (both
 // methods coincide there). `state_based` (LPS): the moments method makes the moments of the
@@ -42,7 +51,8 @@ void apply_surface_correction(const NodeSet& nodes, BondFamilies& bonds, Influen
                               double uniaxial_modulus,
                               SurfaceCorrection method = SurfaceCorrection::Energy,
                               bool state_based = false,
-                              const std::vector<double>& block_modulus = {});
+                              const std::vector<double>& block_modulus = {},
+                              const HeldRowsShare* held = nullptr);
 
 // After a refinement event: the rows flagged in `fresh` were searched again (their factors are the
 // quadrature's), every other row keeps its corrected factors. Corrects the fresh rows and the

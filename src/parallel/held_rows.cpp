@@ -388,6 +388,16 @@ void share_owned_values(const RowPartition& p, std::vector<double>& v,
     for (std::uint32_t i : list) v[i] = all[at++];
 }
 
+void share_owned_values(const RowPartition& p, std::vector<double>& v, int stride) {
+  const auto s = static_cast<std::size_t>(stride);
+  std::vector<double> mine;
+  mine.reserve(p.owned.size() * s);
+  for (std::uint32_t i : p.owned) mine.insert(mine.end(), v.begin() + s * i, v.begin() + s * (i + 1));
+  const std::vector<double> all = mpi::all_gather(mine);
+  for (std::size_t q = 0; q < p.all_owned.size(); ++q)
+    std::copy(all.begin() + s * q, all.begin() + s * (q + 1), v.begin() + s * p.all_owned[q]);
+}
+
 void share_held_setup(const RowPartition& p, NodeSet& ns, const BondFamilies& bf,
                       std::size_t& precrack_bonds) {
   double cut = 0;

@@ -63,6 +63,8 @@ void share_held_setup(const RowPartition& p, NodeSet& ns, const BondFamilies& bf
 // rank), those rows' only.
 void share_owned_values(const RowPartition& p, std::vector<double>& v,
                         const std::vector<std::uint32_t>* rows = nullptr);
+// The same for `stride` values per node (node i's at stride i ... stride i + stride - 1), every row.
+void share_owned_values(const RowPartition& p, std::vector<double>& v, int stride);
 
 // Row i's bond count in the whole model.
 inline std::uint64_t whole_row_length(const RowPartition& p, const BondFamilies& bf, std::size_t i) {

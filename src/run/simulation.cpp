@@ -56,7 +56,7 @@ void remove_earlier_run_outputs(const std::string& dir) {
 // A distributed explicit run whose ranks hold their own bond rows from the set-up on
 // (parallel/held_rows.hpp): owned integration, and nothing that reads another rank's rows
 // (the overlay, which re-checks a bond over both ends' families; of refinement, what
-// Adaptor::rows_can_be_held names) or corrects surfaces over the whole model at set-up. A restart
+// Adaptor::rows_can_be_held names). A restart
 // builds the same rows and reads their bonds from the checkpoint; an adaptive one, whose node
 // set is the checkpoint's, splits the checkpoint's rows afresh and reads its own. Runs refined
 // before they start hold their rows from their first pass on.
@@ -65,8 +65,10 @@ bool holds_rows_from_setup(const Deck& dk) {
   const bool events_allow = !a.enabled || (a.initial.empty() && !a.coarsen &&
                                            a.relax_sweeps == 0 && !a.conserve_energy &&
                                            !a.interface_fit);
+  // A surface correction is made at set-up from each row's owner; an event's correction window
+  // reads rows around it.
   return mpi::distributed() && dk.owned_integration && events_allow && !a.ghost_correction &&
-         !dk.pdro.enabled && dk.surface_correction == SurfaceCorrection::None;
+         !dk.pdro.enabled && (!a.enabled || dk.surface_correction == SurfaceCorrection::None);
 }
 
 }  // namespace

@@ -14,6 +14,8 @@
 #include "discretize/families.hpp"
 #include "input/deck_error.hpp"
 #include "material/force_model.hpp"
+#include "parallel/held_rows.hpp"
+#include "parallel/mpi_env.hpp"
 #include "setup/memory_estimate.hpp"
 
 namespace periadapt {
@@ -157,9 +159,15 @@ Model build_model(const Deck& dk, const FamilyBuild& families) {
   m.surface_correction = dk.surface_correction;
   m.interface_fit = dk.adapt.interface_fit;
   m.ghost.enabled = dk.adapt.ghost_correction;
+  // Held rows: the per-node values of a correction come from each row's owner.
+  HeldRowsShare held;
+  held.owners = [&](std::vector<double>& v, int per_node) {
+    share_owned_values(m.partition, v, per_node);
+  };
+  held.max = [](double v) { return mpi::max_real(v); };
   apply_surface_correction(ns, m.bonds, dk.shape, p_wave_modulus(dk.dim, dk.plane, dk.E, mat.nu),
                            m.surface_correction, m.formulation.state_based(),
-                           block_uniaxial_moduli(m));
+                           block_uniaxial_moduli(m), m.partition.rows_held ? &held : nullptr);
   m.precrack_bonds = apply_precracks(ns, m.bonds, dk.cracks);
   update_damage_weights(ns, m.bonds);
   m.quadrature = qs;
