@@ -123,7 +123,7 @@ while (($#)); do
 import json, os, sys
 j = json.load(open(os.path.join(sys.argv[1], "summary.json")))
 r = j.get("ranks", {})
-n = j["nodes"]["slots"]
+n = j.get("nodes", {}).get("slots") if isinstance(j.get("nodes"), dict) else None
 if r.get("owned_integration"):
     if r["region_steps"] < 1 or r["region_nodes_rank0"] >= n:
         sys.exit(f"owned integration idle: {r}")
