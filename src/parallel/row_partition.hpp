@@ -6,12 +6,12 @@
 // coordinate bisection or Hilbert space-filling curve over the node positions, weighted by each
 // row's bond count. When refinement adds nodes, children join their parent's rank; once the
 // largest rank's bonds pass the mean by more than the deck's threshold, Zoltan repartitions
-// starting from the current owners (LB_APPROACH REPARTITION, which keeps moves few). Since every
-// rank holds the whole state there, a move hands over ownership only: no bond state travels. Refinement
-// events and observers run on every rank alike on the same data; rank 0 writes the files. The
-// explicit solver integrates each rank's region only where it can (parallel/ghost_layer.hpp)
-// and brings the rest up to date before anything reads it; in a run without refinement events
-// each rank then keeps only the bond rows its passes read (parallel/held_rows.hpp).
+// starting from the current owners (LB_APPROACH REPARTITION, which keeps moves few). Every rank
+// holds the whole node set, so a move hands over the node's ownership and, where each rank keeps
+// only the bond rows its passes read (parallel/held_rows.hpp), the row's bonds. Refinement events
+// and observers run on every rank alike on the same data (an event on the rows gathered for it);
+// rank 0 writes the files. The explicit solver integrates each rank's region only where it can
+// (parallel/ghost_layer.hpp) and brings the rest up to date before anything reads it.
 #include <cstddef>
 #include <cstdint>
 #include <string>
