@@ -54,9 +54,10 @@ int num_geom(void* data, int* ierr) {
 }
 
 // The coordinates go to Zoltan last axis first. RCB cuts across the longest extent and, on a
-// tie, across the first coordinate it is given; lattices number x fastest, so a tie then cuts
-// across the axis numbered slowest and each rank's rows lie in one stretch of memory rather than
-// in half of every x-line (the 3D block on 2 ranks: about 12% faster per step).
+// tie, across the first coordinate it is given; lattices number the longest axis slowest and, on
+// a tie, the higher one (discretize/grid.cpp), so either way the cut runs across the axis
+// numbered slowest and each rank's rows lie in one stretch of memory rather than in part of
+// every line (the 3D block on 2 ranks: about 12% faster per step).
 void geom_multi(void* data, int, int, int n, ZOLTAN_ID_PTR gids, ZOLTAN_ID_PTR, int dim,
                 double* xyz, int* ierr) {
   const auto& in = *static_cast<ZoltanInput*>(data);
