@@ -146,8 +146,9 @@ PY
     ); then echo "ok   $name, $np ranks: $r"; else echo "FAIL $name, $np ranks: $r"; fail=1; fi
   done
   # Adaptive rebalancing: refinement events add children on their parent's rank; the imbalance
-  # (largest rank's bonds over the mean, history.csv) stays within the deck's threshold, and at
-  # least one event repartitioned.
+  # (largest rank's work over the mean, history.csv: bonds per step, a multi-rate row's bonds over
+  # its step) stays within the deck's threshold, at least one event repartitioned, and so the
+  # bonds each rank's rows evaluated over the run, a count of the work done, are within it too.
   if [[ $name == rebalance-* ]]; then
     first=${CLI_MPI_RANKS:-2 3}; first=${first%% *}
     if r=$(python3 - "$tmp/$name-$first" <<'PY'
@@ -159,8 +160,10 @@ worst = max(float(r["rank_imbalance"]) for r in rows)
 limit = 1 + ranks["rebalance_threshold"]
 if ranks["partitions_made"] < 2: sys.exit(f"no repartition ({ranks})")
 if worst > limit: sys.exit(f"imbalance {worst} above {limit}")
+done = ranks["evaluation_imbalance"]
+if done > limit: sys.exit(f"bond evaluations' imbalance {done} above {limit}")
 print(f"imbalance <= {worst:.4f} over {len(rows)} rows, {ranks['partitions_made']} partitions, "
-      f"{ranks['events_kept_partition']} events kept the partition")
+      f"{ranks['events_kept_partition']} events kept the partition; evaluations {done:.4f}")
 PY
     ); then echo "ok   $name, $first ranks: $r"; else echo "FAIL $name: $r"; fail=1; fi
   fi

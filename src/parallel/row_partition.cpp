@@ -24,12 +24,20 @@ namespace {
 struct ZoltanInput {
   const NodeSet* ns;
   const BondFamilies* bf;
+  const std::vector<std::uint8_t>* rates;
   std::vector<std::uint32_t> ids;
 };
 
-float row_weight(const NodeSet& ns, const BondFamilies& bf, std::uint32_t i) {
-  // Work per row: its bonds (an inactive row costs a flag test).
-  return (ns.flags[i] & kActive) ? static_cast<float>(bf.end(i) - bf.begin(i)) + 1.0f : 0.01f;
+// A node's multi-rate step in units of dt (1 where no rate is known: a new node takes dt).
+double row_rate(const std::vector<std::uint8_t>& rates, std::size_t i) {
+  return i < rates.size() && rates[i] > 1 ? static_cast<double>(rates[i]) : 1.0;
+}
+
+float row_weight(const NodeSet& ns, const BondFamilies& bf, const std::vector<std::uint8_t>& rates,
+                 std::uint32_t i) {
+  // Work per row and step: its bonds over its step (an inactive row costs a flag test).
+  if (!(ns.flags[i] & kActive)) return 0.01f;
+  return static_cast<float>((static_cast<double>(bf.end(i) - bf.begin(i)) + 1.0) / row_rate(rates, i));
 }
 
 int num_obj(void* data, int* ierr) {
@@ -43,7 +51,7 @@ void obj_list(void* data, int, int, ZOLTAN_ID_PTR gids, ZOLTAN_ID_PTR lids, int 
   for (std::size_t k = 0; k < in.ids.size(); ++k) {
     gids[k] = in.ids[k];
     lids[k] = static_cast<ZOLTAN_ID_TYPE>(k);
-    if (wdim == 1) w[k] = row_weight(*in.ns, *in.bf, in.ids[k]);
+    if (wdim == 1) w[k] = row_weight(*in.ns, *in.bf, *in.rates, in.ids[k]);
   }
   *ierr = ZOLTAN_OK;
 }
@@ -69,11 +77,12 @@ void geom_multi(void* data, int, int, int n, ZOLTAN_ID_PTR gids, ZOLTAN_ID_PTR, 
 
 // The rank of every node: a fresh split when `current` is empty, else a repartition that starts
 // from `current` (the rank of every node).
-std::vector<int> zoltan_owners(const NodeSet& ns, const BondFamilies& bf, PartitionMethod method,
+std::vector<int> zoltan_owners(const NodeSet& ns, const BondFamilies& bf,
+                               const std::vector<std::uint8_t>& rates, PartitionMethod method,
                                const std::vector<int>& current) {
   const std::size_t n = ns.size();
   const int P = mpi::size(), r = mpi::rank();
-  ZoltanInput in{&ns, &bf, {}};
+  ZoltanInput in{&ns, &bf, &rates, {}};
   if (current.empty()) {
     const std::size_t lo = n * static_cast<std::size_t>(r) / static_cast<std::size_t>(P);
     const std::size_t hi = n * static_cast<std::size_t>(r + 1) / static_cast<std::size_t>(P);
@@ -128,21 +137,28 @@ std::vector<int> zoltan_owners(const NodeSet& ns, const BondFamilies& bf, Partit
 
 namespace {
 
-// Each rank's bonds (of its active rows) under `owner`; nodes beyond `owner` or with rank -1 count
-// for none.
-std::vector<double> rank_bonds(const NodeSet& ns, const BondFamilies& bf, const std::vector<int>& owner) {
-  std::vector<double> bonds(static_cast<std::size_t>(mpi::size()), 0.0);
-  for (std::size_t i = 0; i < std::min(ns.size(), owner.size()); ++i)
-    if ((ns.flags[i] & kActive) && owner[i] >= 0)
-      bonds[static_cast<std::size_t>(owner[i])] += static_cast<double>(bf.end(i) - bf.begin(i));
-  return bonds;
+// A row's bonds evaluated per step.
+double row_work(const BondFamilies& bf, const std::vector<std::uint8_t>& rates, std::size_t i) {
+  return static_cast<double>(bf.end(i) - bf.begin(i)) / row_rate(rates, i);
 }
 
-// The largest rank's bonds over the mean under `owner`.
-double bond_imbalance(const NodeSet& ns, const BondFamilies& bf, const std::vector<int>& owner) {
-  const std::vector<double> bonds = rank_bonds(ns, bf, owner);
-  const double mean = std::accumulate(bonds.begin(), bonds.end(), 0.0) / static_cast<double>(bonds.size());
-  return mean > 0 ? *std::max_element(bonds.begin(), bonds.end()) / mean : 1.0;
+// Each rank's work (of its active rows) under `owner`; nodes beyond `owner` or with rank -1 count
+// for none.
+std::vector<double> rank_work(const NodeSet& ns, const BondFamilies& bf,
+                              const std::vector<std::uint8_t>& rates, const std::vector<int>& owner) {
+  std::vector<double> work(static_cast<std::size_t>(mpi::size()), 0.0);
+  for (std::size_t i = 0; i < std::min(ns.size(), owner.size()); ++i)
+    if ((ns.flags[i] & kActive) && owner[i] >= 0)
+      work[static_cast<std::size_t>(owner[i])] += row_work(bf, rates, i);
+  return work;
+}
+
+// The largest rank's work over the mean under `owner`.
+double work_imbalance(const NodeSet& ns, const BondFamilies& bf,
+                      const std::vector<std::uint8_t>& rates, const std::vector<int>& owner) {
+  const std::vector<double> work = rank_work(ns, bf, rates, owner);
+  const double mean = std::accumulate(work.begin(), work.end(), 0.0) / static_cast<double>(work.size());
+  return mean > 0 ? *std::max_element(work.begin(), work.end()) / mean : 1.0;
 }
 
 void adopt_owners(RowPartition& p, std::vector<int> owner) {
@@ -169,29 +185,29 @@ void refresh_partition(RowPartition& p, const NodeSet& ns, const BondFamilies& b
 #ifdef PERIADAPT_HAVE_MPI
   std::vector<int> owner;
   if (p.owner.empty()) {
-    owner = zoltan_owners(ns, bf, p.method, {});
+    owner = zoltan_owners(ns, bf, p.rates, p.method, {});
     ++p.partitions;
   } else {
-    // Children join their parent's rank (a node without one, the rank with the fewest bonds).
+    // Children join their parent's rank (a node without one, the rank with the least work).
     owner = p.owner;
-    std::vector<double> load = rank_bonds(ns, bf, owner);
+    std::vector<double> load = rank_work(ns, bf, p.rates, owner);
     owner.resize(ns.size(), -1);
     for (std::size_t i = p.owner.size(); i < ns.size(); ++i) {
       const std::int32_t a = ns.parent[i];  // older than i, so it has its rank already
       owner[i] = a >= 0 ? owner[static_cast<std::size_t>(a)]
                         : static_cast<int>(std::min_element(load.begin(), load.end()) - load.begin());
       if (ns.flags[i] & kActive)
-        load[static_cast<std::size_t>(owner[i])] += static_cast<double>(bf.end(i) - bf.begin(i));
+        load[static_cast<std::size_t>(owner[i])] += row_work(bf, p.rates, i);
     }
-    if (bond_imbalance(ns, bf, owner) > 1.0 + p.rebalance_threshold) {
-      owner = zoltan_owners(ns, bf, p.method, owner);
+    if (work_imbalance(ns, bf, p.rates, owner) > 1.0 + p.rebalance_threshold) {
+      owner = zoltan_owners(ns, bf, p.rates, p.method, owner);
       ++p.partitions;
     } else {
       ++p.extensions;
     }
   }
   adopt_owners(p, std::move(owner));
-  p.imbalance = bond_imbalance(ns, bf, p.owner);
+  p.imbalance = work_imbalance(ns, bf, p.rates, p.owner);
   p.nodes = ns.size();
   p.bonds = bf.neighbor.size();
 #else

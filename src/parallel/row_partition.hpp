@@ -34,7 +34,10 @@ struct RowPartition {
   std::size_t nodes = 0;             // the node count it was made for
   std::size_t bonds = 0;             // the bond count it was made for
   double rebalance_threshold = 0.10;  // repartition when imbalance exceeds 1 + this
-  double imbalance = 1.0;            // largest rank's bonds over the mean
+  double imbalance = 1.0;            // largest rank's work over the mean
+  // Multi-rate stepping: each node's step in units of dt (its row's work per step is its bonds
+  // over it), identical on every rank; empty, or a node beyond it: every step.
+  std::vector<std::uint8_t> rates;
   long partitions = 0;               // how many times Zoltan made it (the first split included)
   long extensions = 0;               // refinement events absorbed without a repartition
   long generation = 0;               // counts the owner assignments
@@ -73,7 +76,8 @@ struct RowPartition {
 
 // When the partition is active and the nodes or bonds changed since the last call: the first
 // call splits the rows, later ones give new nodes their parent's rank and repartition when the
-// imbalance passes the threshold (collective: every rank calls it at the same point).
+// imbalance passes the threshold (collective: every rank calls it at the same point). A row's
+// work is its bonds per step: its bonds over its multi-rate step (`rates`).
 void refresh_partition(RowPartition& p, const NodeSet& ns, const BondFamilies& bf);
 
 // This rank's rows and the rows around them, ascending, kept until the owners change: with

@@ -13,13 +13,13 @@
 
 namespace periadapt {
 
-nlohmann::json ranks_json(const RowPartition& p) {
-  return {{"count", mpi::size()},
+nlohmann::json ranks_json(const RowPartition& p, double owned_evaluations) {
+  nlohmann::json j = {{"count", mpi::size()},
           {"partition", p.method == PartitionMethod::Rcb ? "rcb" : "hsfc"},
           {"partitions_made", p.partitions},
           {"events_kept_partition", p.extensions},
           {"rebalance_threshold", p.rebalance_threshold},
-          {"bond_imbalance", p.imbalance},
+          {"work_imbalance", p.imbalance},
           {"owned_integration", p.ghost_mode},
           {"region_nodes_rank0", p.ghost_mode ? nlohmann::json(p.region.size()) : nlohmann::json(nullptr)},
           {"ghost_nodes_rank0", p.ghost_mode ? nlohmann::json(p.ghosts) : nlohmann::json(nullptr)},
@@ -27,6 +27,14 @@ nlohmann::json ranks_json(const RowPartition& p) {
           {"region_steps", p.region_steps},
           {"held_bond_rows", p.rows_held},
           {"bond_rows_rank0", p.rows_held ? nlohmann::json(p.held_row_count) : nlohmann::json(nullptr)}};
+  if (owned_evaluations >= 0) {
+    // The bonds each rank's rows evaluated over the run: the largest share over the mean
+    // (collective).
+    const double mean = mpi::sum_real(owned_evaluations) / mpi::size();
+    const double most = mpi::max_real(owned_evaluations);
+    j["evaluation_imbalance"] = mean > 0 ? most / mean : 1.0;
+  }
+  return j;
 }
 
 SummaryObserver::SummaryObserver(const RunView& view) : initial_nodes_(view.model.nodes.size()) {}
@@ -80,7 +88,7 @@ void SummaryObserver::finish(RunView& view, RunResult& res) {
   j["dt_stable"] = tot.dt_stable;
   j["end_time_s"] = vv.time();
   j["threads"] = omp_get_max_threads();
-  if (m.partition.active) j["ranks"] = ranks_json(m.partition);
+  if (m.partition.active) j["ranks"] = ranks_json(m.partition, vv.owned_bond_evaluations());
   j["setup_time_s"] = tot.setup_s;
   j["solver_time_s"] = tot.solver_s;
   // Inside the run loop, besides the solver: sampling the history (energies, damage, crack tip)

@@ -9,8 +9,10 @@
 namespace periadapt {
 
 // summary.json's `ranks` of a distributed run: rank count, partition method, partitions made,
-// events that kept the partition, the rebalance threshold and the final bond imbalance.
-nlohmann::json ranks_json(const RowPartition& p);
+// events that kept the partition, the rebalance threshold and the final work imbalance; with
+// `owned_evaluations` (this rank's; collective) also how evenly the ranks shared the bond
+// evaluations over the run.
+nlohmann::json ranks_json(const RowPartition& p, double owned_evaluations = -1);
 
 class SummaryObserver : public RunObserver {
  public:

@@ -302,6 +302,32 @@ void VelocityVerlet::rebuild_rate_rows() {
       rate_[i] = 1;  // a node that comes back (coarsening) starts on dt
     }
   }
+  // The partition weighs each row's bonds by how often it is stepped.
+  if (m_.partition.active) m_.partition.rates = rate_;
+  class_owned_generation_ = -1;
+}
+
+double VelocityVerlet::owned_bonds_of_pass(const std::vector<std::uint32_t>* rows) {
+  const RowPartition& p = m_.partition;
+  double s = 0;
+  if (rows && rows != &pass_rows_) {
+    for (std::uint32_t i : *rows)
+      if (p.mine[i] && (m_.nodes.flags[i] & kActive))
+        s += static_cast<double>(whole_row_length(p, m_.bonds, i));
+    return s;
+  }
+  if (class_owned_generation_ != p.generation) {
+    class_owned_bonds_.fill(0.0);
+    for (std::uint32_t i : p.owned)
+      if (m_.nodes.flags[i] & kActive)
+        class_owned_bonds_[multirate_ && i < rate_.size() ? rate_[i] : 1] +=
+            static_cast<double>(whole_row_length(p, m_.bonds, i));
+    class_owned_generation_ = p.generation;
+  }
+  // A step's pass takes the classes whose cycles close at this step; a full pass all of them.
+  for (int k = 1; k <= kMaxRateRatio; ++k)
+    if (!rows || step_ % k == 0) s += class_owned_bonds_[static_cast<std::size_t>(k)];
+  return s;
 }
 
 void VelocityVerlet::synchronize_velocities() {
@@ -407,6 +433,7 @@ void VelocityVerlet::compute_accelerations(const std::vector<std::uint32_t>* row
                                      want_energy || keep_recent ? &energy_ : nullptr);
     bond_evals_ += static_cast<double>(whole_bond_count(m_.partition, m_.bonds));
   }
+  if (m_.partition.active) owned_evals_ += owned_bonds_of_pass(partial ? rows : nullptr);
   m_.partition.ghost_pass = false;
   // Owned integration: only the region's nodes have their forces here.
   const std::vector<std::uint32_t>* accel_rows = partial ? rows : nullptr;

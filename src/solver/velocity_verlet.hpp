@@ -46,6 +46,9 @@ class VelocityVerlet {
   const DivergenceError& divergence() const { return divergence_; }
   // Number of bond evaluations done so far (for throughput reports).
   double bond_evaluations() const { return bond_evals_; }
+  // Distributed runs: the bonds this rank's own rows evaluated since the run (or its restart)
+  // began; the ranks' shares show how evenly the partition spreads the work.
+  double owned_bond_evaluations() const { return owned_evals_; }
 
   // Undo support (refinement triggered by damage redoes the step on the refined grid). When on,
   // every step keeps what undo_last_step() needs: the previous kinematic state and the bonds the
@@ -148,6 +151,8 @@ class VelocityVerlet {
   double last_power_ = 0.0;
   std::size_t broken_total_ = 0;
   double bond_evals_ = 0.0;
+  double owned_evals_ = 0.0;
+  double owned_bonds_of_pass(const std::vector<std::uint32_t>* rows);
   double runaway_limit_ = 0.0;
   DivergenceError divergence_{};
   bool undo_enabled_ = false;
@@ -163,6 +168,10 @@ class VelocityVerlet {
   std::vector<std::uint32_t> pending_;  // nodes waiting to take a longer rate
   std::array<std::vector<std::uint32_t>, kMaxRateRatio + 1> class_rows_;  // active nodes by rate
   std::array<double, kMaxRateRatio + 1> class_bonds_{};  // their bond counts
+  // This rank's share of class_bonds_ (all its rows in class 1 without multi-rate stepping), for
+  // the partition's owner assignment `class_owned_generation_` (-1: to count afresh).
+  std::array<double, kMaxRateRatio + 1> class_owned_bonds_{};
+  long class_owned_generation_ = -1;
   double pass_bonds_ = 0.0;                               // bonds of this step's pass_rows_
   std::vector<std::uint32_t> pass_rows_, idle_rows_;  // this step's force rows, and the others
   bool full_pass_ = true;                             // every active row is due this step
