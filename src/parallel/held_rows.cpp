@@ -376,6 +376,9 @@ void share_owned_values(const RowPartition& p, std::vector<double>& v,
     for (std::size_t q = 0; q < p.all_owned.size(); ++q) v[p.all_owned[q]] = all[q];
     return;
   }
+  // Every rank lists the same rows, so none skips the gather alone (an LPS-dual pass without a
+  // gathered break lists none).
+  if (rows->empty()) return;
   // The listed rows grouped by owner, in list order: what each rank sends, in rank order.
   std::vector<std::vector<std::uint32_t>> by_rank(static_cast<std::size_t>(mpi::size()));
   for (std::uint32_t i : *rows) by_rank[static_cast<std::size_t>(p.owner[i])].push_back(i);
