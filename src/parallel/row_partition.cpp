@@ -17,6 +17,13 @@ namespace periadapt {
 
 namespace {
 
+// A row's bonds evaluated per step: its bonds over its multi-rate step in units of dt (a node
+// without a known step, e.g. a new one, takes dt).
+double row_work(const BondFamilies& bf, const std::vector<std::uint8_t>& rates, std::size_t i) {
+  const double rate = i < rates.size() && rates[i] > 1 ? static_cast<double>(rates[i]) : 1.0;
+  return static_cast<double>(bf.end(i) - bf.begin(i)) / rate;
+}
+
 #ifdef PERIADAPT_HAVE_MPI
 // What Zoltan's callbacks read: the nodes this rank hands in. The first split hands in a
 // contiguous id range (every rank holds all nodes, so any disjoint split is a valid start); a
@@ -28,16 +35,12 @@ struct ZoltanInput {
   std::vector<std::uint32_t> ids;
 };
 
-// A node's multi-rate step in units of dt (1 where no rate is known: a new node takes dt).
-double row_rate(const std::vector<std::uint8_t>& rates, std::size_t i) {
-  return i < rates.size() && rates[i] > 1 ? static_cast<double>(rates[i]) : 1.0;
-}
-
 float row_weight(const NodeSet& ns, const BondFamilies& bf, const std::vector<std::uint8_t>& rates,
                  std::uint32_t i) {
-  // Work per row and step: its bonds over its step (an inactive row costs a flag test).
+  // Zoltan's weight: the row's work, plus a little for the node itself (an inactive row costs a
+  // flag test).
   if (!(ns.flags[i] & kActive)) return 0.01f;
-  return static_cast<float>((static_cast<double>(bf.end(i) - bf.begin(i)) + 1.0) / row_rate(rates, i));
+  return static_cast<float>(row_work(bf, rates, i) + 1.0);
 }
 
 int num_obj(void* data, int* ierr) {
@@ -136,11 +139,6 @@ std::vector<int> zoltan_owners(const NodeSet& ns, const BondFamilies& bf,
 }  // namespace
 
 namespace {
-
-// A row's bonds evaluated per step.
-double row_work(const BondFamilies& bf, const std::vector<std::uint8_t>& rates, std::size_t i) {
-  return static_cast<double>(bf.end(i) - bf.begin(i)) / row_rate(rates, i);
-}
 
 // Each rank's work (of its active rows) under `owner`; nodes beyond `owner` or with rank -1 count
 // for none.

@@ -65,7 +65,7 @@ void VelocityVerlet::restore_state(ArchiveReader& r) {
   r.get(max_ratio_);
   r.get(energy_check_every_);
   r.get(rate_);
-  if (m_.partition.active && multirate_) m_.partition.rates = rate_;
+  if (m_.partition.active) m_.partition.rates = rate_;
   r.get(target_);
   r.get(pending_);
   r.get(class_rows_);
