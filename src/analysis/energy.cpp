@@ -5,18 +5,45 @@
 #include <cmath>
 #include <vector>
 
+#include "core/exact_sum.hpp"
+#include "parallel/owned_sums.hpp"
 #include "solver/internal_forces.hpp"
 
 namespace periadapt {
 
-double kinetic_energy(const NodeSet& ns) { return momentum_and_kinetic(ns).kinetic; }
+namespace {
 
-double strain_energy_of(const NodeSet& nodes, const std::vector<double>& W) {
-  double e = 0;
-  const std::size_t n = W.size();
-#pragma omp parallel for reduction(+ : e) schedule(static)
-  for (std::size_t i = 0; i < n; ++i) e += W[i] * nodes.volume[i];
-  return e;
+// The exact sum of term(i) over the nodes i < n this rank counts, over the ranks under `p`.
+template <class Term>
+double node_sum(const RowPartition* p, std::size_t n, std::size_t slots, const Term& term) {
+  const CountedNodes counted = counted_nodes(p, slots);
+  ExactSum total;
+#pragma omp parallel
+  {
+    ExactSum mine;
+#pragma omp for schedule(static) nowait
+    for (std::size_t i = 0; i < n; ++i)
+      if (counted(i)) mine.add(term(i));
+#pragma omp critical(periadapt_node_sum)
+    total.add(mine);
+  }
+  add_over_ranks(p, &total, 1);
+  return total.value();
+}
+
+}  // namespace
+
+double kinetic_energy(const NodeSet& ns, const RowPartition* p) {
+  return node_sum(p, ns.size(), ns.size(), [&](std::size_t i) {
+    if (!(ns.flags[i] & kActive)) return 0.0;
+    double v2 = 0;
+    for (int d = 0; d < ns.dim; ++d) v2 += ns.v[d][i] * ns.v[d][i];
+    return 0.5 * ns.density[i] * ns.volume[i] * v2;
+  });
+}
+
+double strain_energy_of(const NodeSet& nodes, const std::vector<double>& W, const RowPartition* p) {
+  return node_sum(p, W.size(), nodes.size(), [&](std::size_t i) { return W[i] * nodes.volume[i]; });
 }
 
 double strain_energy(const Model& model, std::vector<double>& W) {

@@ -1,5 +1,6 @@
 #include "parallel/mpi_env.hpp"
 
+#include <algorithm>
 #include <cstdlib>
 #include <numeric>
 #include <stdexcept>
@@ -123,6 +124,33 @@ double sum_real(double v) {
   if (g_active) MPI_Allreduce(MPI_IN_PLACE, &v, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
 #endif
   return v;
+}
+
+void sum_exact(ExactSum* sums, std::size_t count) {
+#ifdef PERIADAPT_HAVE_MPI
+  if (!g_active || count == 0) return;
+  constexpr std::size_t L = ExactSum::kLimbs;
+  std::vector<std::int64_t> limbs(count * L);
+  std::vector<double> special(count);
+  for (std::size_t q = 0; q < count; ++q) {
+    sums[q].normalize();
+    std::copy(sums[q].limbs().begin(), sums[q].limbs().end(), limbs.begin() + static_cast<long>(q * L));
+    special[q] = sums[q].special();
+  }
+  MPI_Allreduce(MPI_IN_PLACE, limbs.data(), static_cast<int>(limbs.size()), MPI_INT64_T, MPI_SUM,
+                MPI_COMM_WORLD);
+  MPI_Allreduce(MPI_IN_PLACE, special.data(), static_cast<int>(count), MPI_DOUBLE, MPI_SUM,
+                MPI_COMM_WORLD);
+  for (std::size_t q = 0; q < count; ++q) {
+    std::copy(limbs.begin() + static_cast<long>(q * L), limbs.begin() + static_cast<long>((q + 1) * L),
+              sums[q].limbs().begin());
+    sums[q].special() = special[q];
+    sums[q].normalize();
+  }
+#else
+  (void)sums;
+  (void)count;
+#endif
 }
 
 template <class T>

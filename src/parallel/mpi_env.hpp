@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "core/exact_sum.hpp"
+
 namespace periadapt::mpi {
 
 // Initializes MPI (and Zoltan) when this process was started by mpirun with more than one
@@ -36,6 +38,9 @@ long max(long v);
 double max_real(double v);
 // Sum over the ranks.
 double sum_real(double v);
+// Adds the ranks' exact accumulators: afterwards every rank holds the exact sum of every rank's
+// terms, the same bits as one accumulator that took them all (order-free sums).
+void sum_exact(ExactSum* sums, std::size_t count);
 // The lowest rank's non-empty `mine`, on every rank; empty when every rank's is (an error some
 // ranks met, which all then report alike).
 std::string first_text(const std::string& mine);

@@ -34,8 +34,10 @@ void HistoryObserver::on_step(RunView& view, long step, bool closing) {
   if (!view.history_due(step, closing)) return;
   const NodeSet& ns = view.model.nodes;
   const VelocityVerlet& vv = view.vv;
+  // Every rank takes part in the sums (collective), rank 0 writes them.
+  const RowPartition* part = view.model.partition.active ? &view.model.partition : nullptr;
   U_ = view.strain_energy();
-  K_ = kinetic_energy(ns);
+  K_ = kinetic_energy(ns, part);
   damaged_nodes_ = 0;
   damage_sum_ = 0;
   std::size_t active = 0;
@@ -46,18 +48,19 @@ void HistoryObserver::on_step(RunView& view, long step, bool closing) {
     damage_sum_ += phi;
     if (phi > view.deck.output.tip_threshold) ++damaged_nodes_;
   }
+  const std::string resultants = resultant_columns(
+      view.model, [&](const BodyLoad& l) { return vv.applied_force(l); },
+      [&](const PrescribedMotion& p) { return vv.reaction_force(p); }, part);
+  const std::string regions =
+      region_columns(view.deck.output.regions, ns, view.energy_density(), ns.f, part);
   if (!out_.is_open()) return;
   const Vec3 tip = tip_ ? tip_->last_tip() : Vec3{NAN, NAN, NAN};
   const double speed = tip_ ? tip_->current_speed() : 0.0;
-  const std::string resultants = resultant_columns(
-      view.model, [&](const BodyLoad& l) { return vv.applied_force(l); },
-      [&](const PrescribedMotion& p) { return vv.reaction_force(p); });
   out_ << fmt::format(
       "{},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{},{},{}{}{}{:.4f}\n",
       step, vv.time(), K_, U_, vv.external_work(), K_ + U_ - vv.external_work(), vv.broken_bonds(),
       damaged_nodes_, damage_sum_, tip[0], tip[1], tip[2], speed, active,
-      whole_bond_count(view.model.partition, view.model.bonds), resultants,
-      region_columns(view.deck.output.regions, ns, view.energy_density(), ns.f),
+      whole_bond_count(view.model.partition, view.model.bonds), resultants, regions,
       rank_column_ ? fmt::format("{:.4f},", view.model.partition.imbalance) : std::string(),
       view.elapsed_s());
 }

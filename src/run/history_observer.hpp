@@ -16,7 +16,10 @@ class HistoryObserver : public RunObserver {
   void on_start(RunView& view) override;
   bool wants_energy_density(long step) const override;
   void on_step(RunView& view, long step, bool closing) override;
-  bool wants_state(const RunView& view, long step) const override { return view.history_due(step, false); }
+  // Its sums are each rank's own nodes' (exact, added over the ranks), and damage and bond
+  // counts are shared every step: a distributed step need not bring every node up to date.
+  bool wants_state(const RunView&, long) const override { return false; }
+  bool sums_energy_over_own_rows() const override { return true; }
   void save(ArchiveWriter& w) override;
   void restore(ArchiveReader& r, RunView& view) override;
   void finish(RunView& view, RunResult& result) override;

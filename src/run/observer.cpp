@@ -1,6 +1,7 @@
 #include "run/observer.hpp"
 
 #include "analysis/energy.hpp"
+#include "solver/internal_forces.hpp"
 #include "solver/velocity_verlet.hpp"
 
 namespace periadapt {
@@ -21,12 +22,13 @@ bool RunView::history_due(long step, bool closing) const {
 
 void RunView::sample_energy() {
   if (energy_step_ == vv.step_count()) return;
-  if (const std::vector<double>* w = vv.energy_density_now()) {
+  const std::vector<double>* w = vv.energy_density_now();
+  if (!w) w = vv.energy_density_now_of_own_rows();
+  if (w)
     W_ = *w;
-    U_ = strain_energy_of(model.nodes, W_);
-  } else {
-    U_ = periadapt::strain_energy(model, W_);
-  }
+  else
+    periadapt::energy_density(model, W_);
+  U_ = strain_energy_of(model.nodes, W_, model.partition.active ? &model.partition : nullptr);
   energy_step_ = vv.step_count();
 }
 

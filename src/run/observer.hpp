@@ -50,7 +50,9 @@ class RunView {
   bool history_due(long step, bool closing) const;
   // The current step's strain-energy density per node and total, computed once for all
   // observers: from the step's own force pass when an observer asked for it
-  // (RunObserver::wants_energy_density), else by a bond pass.
+  // (RunObserver::wants_energy_density), else by a bond pass. In a distributed run the first
+  // call of a step is collective, and the densities may be valid for this rank's own rows only
+  // (RunObserver::sums_energy_over_own_rows); the total is every rank's.
   const std::vector<double>& energy_density();
   double strain_energy();
 
@@ -73,6 +75,9 @@ class RunObserver {
   virtual void on_start(RunView&) {}
   // Whether `step` needs the strain-energy density: the solver then keeps it from its force pass.
   virtual bool wants_energy_density(long /*step*/) const { return false; }
+  // Whether the densities of each rank's own rows suffice (sums over the nodes, taken with
+  // analysis/energy.hpp's partition argument): a distributed step then need not share them all.
+  virtual bool sums_energy_over_own_rows() const { return false; }
   // Whether on_step(`step`) reads the nodes' state (distributed runs bring every node up to date
   // first; parallel/ghost_layer.hpp). Closing calls always get it.
   virtual bool wants_state(const RunView&, long /*step*/) const { return true; }

@@ -22,12 +22,15 @@ using ForceField = std::array<std::vector<double>, 3>;
 std::string region_header(const std::vector<NamedRegion>& regions, int dim);
 
 // The values under region_header. `W`: strain-energy density per node; `f`: internal force
-// density per component (ns.f, or the static solve's K u).
+// density per component (ns.f, or the static solve's K u). Exact sums: with an active partition
+// `p` each rank adds its own nodes (collective; analysis/energy.hpp), the serial run's bits.
 std::string region_columns(const std::vector<NamedRegion>& regions, const NodeSet& ns,
-                           const std::vector<double>& W, const ForceField& f);
+                           const std::vector<double>& W, const ForceField& f,
+                           const RowPartition* p = nullptr);
 
 // {NAME: {internal_force_N, mean_displacement_m, strain_energy_J, kinetic_energy_J}}.
 nlohmann::json regions_json(const std::vector<NamedRegion>& regions, const NodeSet& ns,
-                            const std::vector<double>& W, const ForceField& f);
+                            const std::vector<double>& W, const ForceField& f,
+                            const RowPartition* p = nullptr);
 
 }  // namespace periadapt

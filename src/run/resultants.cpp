@@ -6,7 +6,9 @@
 #include <cctype>
 #include <sstream>
 
+#include "core/exact_sum.hpp"
 #include "io/line_plot.hpp"
+#include "parallel/owned_sums.hpp"
 
 namespace periadapt {
 
@@ -41,28 +43,34 @@ std::string resultant_header(const Model& m) {
   return h;
 }
 
-Vec3 mean_displacement(const NodeSet& ns, const std::vector<std::uint32_t>& nodes) {
-  Vec3 u{0, 0, 0};
-  double vol = 0;
+Vec3 mean_displacement(const NodeSet& ns, const std::vector<std::uint32_t>& nodes,
+                       const RowPartition* p) {
+  const CountedNodes counted = counted_nodes(p, ns.size());
+  std::array<ExactSum, 4> s;  // u V per component, V
   for (std::uint32_t i : nodes) {
-    if (!(ns.flags[i] & kActive)) continue;
-    vol += ns.volume[i];
-    for (int d = 0; d < ns.dim; ++d) u[d] += ns.u[d][i] * ns.volume[i];
+    if (!(ns.flags[i] & kActive) || !counted(i)) continue;
+    s[3].add(ns.volume[i]);
+    for (int d = 0; d < ns.dim; ++d) s[static_cast<std::size_t>(d)].add(ns.u[d][i] * ns.volume[i]);
   }
-  for (double& c : u) c = vol > 0 ? c / vol : 0.0;
+  add_over_ranks(p, s.data(), s.size());
+  const double vol = s[3].value();
+  Vec3 u{0, 0, 0};
+  for (int d = 0; d < 3; ++d) u[d] = vol > 0 ? s[static_cast<std::size_t>(d)].value() / vol : 0.0;
   return u;
 }
 
 std::string resultant_columns(const Model& m,
                               const std::function<Vec3(const BodyLoad&)>& applied,
-                              const std::function<Vec3(const PrescribedMotion&)>& reaction) {
+                              const std::function<Vec3(const PrescribedMotion&)>& reaction,
+                              const RowPartition* p) {
   std::string c;
   auto add = [&](const Vec3& F, const Vec3& u) {
     for (int d = 0; d < m.nodes.dim; ++d) c += fmt::format("{:.9e},", F[d]);
     for (int d = 0; d < m.nodes.dim; ++d) c += fmt::format("{:.9e},", u[d]);
   };
-  for (const BodyLoad& l : m.loads) add(applied(l), mean_displacement(m.nodes, l.nodes));
-  for (const PrescribedMotion& p : m.motions) add(reaction(p), mean_displacement(m.nodes, p.nodes));
+  for (const BodyLoad& l : m.loads) add(applied(l), mean_displacement(m.nodes, l.nodes, p));
+  for (const PrescribedMotion& pm : m.motions)
+    add(reaction(pm), mean_displacement(m.nodes, pm.nodes, p));
   for (const Impactor& im : m.impactors)
     for (const Vec3& v : {scale(im.force, -1.0), im.center, im.velocity})
       for (int d = 0; d < m.nodes.dim; ++d) c += fmt::format("{:.9e},", v[d]);

@@ -20,17 +20,22 @@ namespace periadapt {
 // "load_NAME_fx_N,load_NAME_ux_m,...,bc_NAME_fx_N,..." with a trailing comma.
 std::string resultant_header(const Model& m);
 
-// The values under resultant_header, with a trailing comma.
+// The values under resultant_header, with a trailing comma. Under an active partition `p` the
+// mean displacements are collective (analysis/energy.hpp), and so must `reaction` be where it is.
 std::string resultant_columns(const Model& m,
                               const std::function<Vec3(const BodyLoad&)>& applied,
-                              const std::function<Vec3(const PrescribedMotion&)>& reaction);
+                              const std::function<Vec3(const PrescribedMotion&)>& reaction,
+                              const RowPartition* p = nullptr);
 
 // {"loads": {NAME: {force_N, mean_displacement_m}}, "boundary_conditions": {...}}.
 nlohmann::json resultants_json(const Model& m,
                                const std::function<Vec3(const BodyLoad&)>& applied,
                                const std::function<Vec3(const PrescribedMotion&)>& reaction);
 
-Vec3 mean_displacement(const NodeSet& ns, const std::vector<std::uint32_t>& nodes);
+// Volume-weighted over the active ones of `nodes`, summed exactly (collective under an active
+// partition `p`: each rank adds its own nodes).
+Vec3 mean_displacement(const NodeSet& ns, const std::vector<std::uint32_t>& nodes,
+                       const RowPartition* p = nullptr);
 
 // A load's force at the given amplitude: amplitude x density x volume of its active nodes.
 Vec3 load_force(const NodeSet& ns, const BodyLoad& load, double amplitude);

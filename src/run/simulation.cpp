@@ -314,11 +314,13 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
   Progress bar(ts.steps, opt.quiet);
   for (long s = first_step; s <= ts.steps; ++s) {
     const auto t0 = clock::now();
+    bool energy = false, every_row = false;
     for (const auto& o : observers)
       if (o->wants_energy_density(s)) {
-        vv.request_energy_at(s);
-        break;
+        energy = true;
+        every_row = every_row || !o->sums_energy_over_own_rows();
       }
+    if (energy) vv.request_energy_at(s, every_row);
     bool ok = false;
     try {
       ok = adaptor ? adaptor->step() : vv.step();

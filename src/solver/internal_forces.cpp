@@ -199,15 +199,16 @@ void energy_density(const Model& m, std::vector<double>& W) {
 }
 
 void energy_density_rows(const Model& m, std::vector<double>& W,
-                         const std::vector<std::uint32_t>& rows) {
+                         const std::vector<std::uint32_t>& rows, bool own_rows_only) {
   const RowPartition& p = m.partition;
-  if (!p.rows_held) {
+  own_rows_only = own_rows_only && p.active;
+  if (!p.rows_held && !own_rows_only) {
     material_energy_density(m.nodes, m.bonds, material_context(m), W, &rows);
     return;
   }
   const std::vector<std::uint32_t> mine = owned_rows(p, &rows);
   material_energy_density(m.nodes, m.bonds, material_context(m), W, &mine);
-  share_owned_values(p, W, &rows);
+  if (!own_rows_only) share_owned_values(p, W, &rows);
 }
 
 // Contact forces are not in the stress: they act between nodes that the bonds do not join.

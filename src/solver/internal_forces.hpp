@@ -24,8 +24,9 @@ std::size_t internal_forces_rows(Model& m, bool allow_breaking, const std::vecto
 void energy_density(const Model& m, std::vector<double>& W);
 // The material's energy density of the listed rows only (the others' left as they are); with held
 // bond rows (parallel/held_rows.hpp) each owner evaluates its own and shares them (collective).
+// `own_rows_only`: in a distributed run, only this rank's rows, kept here (no collective).
 void energy_density_rows(const Model& m, std::vector<double>& W,
-                         const std::vector<std::uint32_t>& rows);
+                         const std::vector<std::uint32_t>& rows, bool own_rows_only = false);
 // Stress of every node, the derivative of its energy density above with respect to a homogeneous
 // strain (row-major 3 x 3 per node; LPS also leaves the dilatation in m.lps_scratch.theta).
 void stress_density(const Model& m, std::vector<double>& sigma);

@@ -5,9 +5,11 @@
 #include <stdexcept>
 #include <type_traits>
 
+#include "core/exact_sum.hpp"
 #include "parallel/ghost_layer.hpp"
 #include "parallel/held_rows.hpp"
 #include "parallel/mpi_env.hpp"
+#include "parallel/owned_sums.hpp"
 #include "solver/internal_forces.hpp"
 
 namespace periadapt {
@@ -405,10 +407,15 @@ void VelocityVerlet::compute_accelerations(const std::vector<std::uint32_t>* row
   // A subcycle pass covers every node with a prescribed motion (they are never slow).
   const bool partial = rows && m_.formulation.row_local();
   // A subcycle step: the idle rows' densities at this (drifted) state come from their own pass.
-  const bool energy_kept = partial && want_energy && (subcycle || energy_step_ == step_);
+  // Densities a region step left for each rank's own rows only do not complete a whole pass's
+  // field (an event's refresh may also hand rows to new owners): the observers make their own.
+  const bool energy_kept =
+      partial && want_energy &&
+      (subcycle || (energy_step_ == step_ && (!energy_owned_only_ || ghost_step_)));
   if (subcycle && want_energy) {
     gather_rows(step_, false, idle_rows_);
-    energy_density_rows(m_, energy_, idle_rows_);
+    // A region step: the sums read each rank's own rows (energy_density_now_of_own_rows()).
+    energy_density_rows(m_, energy_, idle_rows_, ghost_step_);
   }
   energy_step_ = want_energy && (!partial || energy_kept) ? step_ : -1;
   energy_owned_only_ = ghost_step_;
@@ -494,18 +501,23 @@ void VelocityVerlet::compute_accelerations(const std::vector<std::uint32_t>* row
 
 std::array<double, 3> VelocityVerlet::reaction_force(const PrescribedMotion& pm) const {
   const NodeSet& ns = m_.nodes;
-  std::array<double, 3> F{0, 0, 0};
+  // Each owner keeps its nodes' reactions (owned integration): exact sums over the ranks' own.
+  const RowPartition* part = m_.partition.active ? &m_.partition : nullptr;
+  const CountedNodes counted = counted_nodes(part, ns.size());
+  std::array<ExactSum, 3> F;
   for (std::uint32_t i : pm.nodes) {
-    if (!(ns.flags[i] & kActive)) continue;
+    if (!(ns.flags[i] & kActive) || !counted(i)) continue;
     for (int d = 0; d < ns.dim; ++d) {
       if (!pm.component[d]) continue;
       const std::size_t dof = static_cast<std::size_t>(i) * 3 + d;
       const auto q = std::lower_bound(fixed_dofs_.begin(), fixed_dofs_.end(), dof);
       if (q != fixed_dofs_.end() && *q == dof)
-        F[d] += reaction_[static_cast<std::size_t>(q - fixed_dofs_.begin())] * ns.volume[i];
+        F[static_cast<std::size_t>(d)].add(reaction_[static_cast<std::size_t>(q - fixed_dofs_.begin())] *
+                                           ns.volume[i]);
     }
   }
-  return F;
+  add_over_ranks(part, F.data(), F.size());
+  return {F[0].value(), F[1].value(), F[2].value()};
 }
 
 std::array<double, 3> VelocityVerlet::applied_force(const BodyLoad& load) const {
@@ -521,21 +533,22 @@ std::array<double, 3> VelocityVerlet::applied_force(const BodyLoad& load) const 
 double VelocityVerlet::external_power() const {
   const NodeSet& ns = m_.nodes;
   // Owned integration: each rank sums the terms of its own nodes (another rank's may be stale
-  // here) and the ranks add their sums: the serial sum up to round-off.
+  // here) and the ranks add their exact sums: the serial sum to the bit.
   const RowPartition& part = m_.partition;
   const bool owned = part.ghost_mode && part.mine.size() == ns.size();
   if (m_.loads.empty() && fixed_dofs_.empty()) return 0.0;
-  double p = 0;
+  ExactSum p;
   for (const BodyLoad& L : m_.loads)
     for (std::uint32_t i : L.nodes)
       if (!owned || part.mine[i])
-        for (int d = 0; d < ns.dim; ++d) p += body_[d][i] * ns.v[d][i] * ns.volume[i];
+        for (int d = 0; d < ns.dim; ++d) p.add(body_[d][i] * ns.v[d][i] * ns.volume[i]);
   for (std::size_t q = 0; q < fixed_dofs_.size(); ++q) {
     const std::size_t i = fixed_dofs_[q] / 3;
     const int d = static_cast<int>(fixed_dofs_[q] % 3);
-    if (!owned || part.mine[i]) p += reaction_[q] * ns.v[d][i] * ns.volume[i];
+    if (!owned || part.mine[i]) p.add(reaction_[q] * ns.v[d][i] * ns.volume[i]);
   }
-  return owned ? mpi::sum_real(p) : p;
+  if (owned) mpi::sum_exact(&p, 1);
+  return p.value();
 }
 
 void VelocityVerlet::initialize() {

@@ -39,7 +39,8 @@ class VelocityVerlet {
   double dt() const { return dt_; }
   double external_work() const { return external_work_; }
   // Resultants at the current state (N): the force a prescribed motion's supports exert on the
-  // body over its constrained components, and the force a load applies.
+  // body over its constrained components (exact sums; collective in a distributed run, where each
+  // rank adds the reactions of its own nodes), and the force a load applies.
   std::array<double, 3> reaction_force(const PrescribedMotion& pm) const;
   std::array<double, 3> applied_force(const BodyLoad& load) const;
   std::size_t broken_bonds() const { return broken_total_; }
@@ -111,6 +112,11 @@ class VelocityVerlet {
     return energy_step_ == step_ && !energy_owned_only_ && energy_.size() == m_.nodes.size()
                ? &energy_
                : nullptr;
+  }
+  // The energy densities of the current state when a force pass computed them, valid for this
+  // rank's rows at least (all rows but after a step that advanced the regions alone), else nullptr.
+  const std::vector<double>* energy_density_now_of_own_rows() const {
+    return energy_step_ == step_ && energy_.size() == m_.nodes.size() ? &energy_ : nullptr;
   }
   // Owned integration: a trigger that reads only this rank's rows (adapt/adaptor.cpp) asks for
   // their densities with every_row = false, and the step may leave the other rows' unshared.
