@@ -5,7 +5,10 @@
 # stepping (summary.json's bond_evals_per_s) with the ratio of the medians.
 #   bash bench/compare_revisions.sh REV [DECK] [REPEATS]
 # DECK defaults to bench/pmb_block_3d.yaml (the LAMMPS comparison's 3D PMB block, 216,000
-# nodes, 200 steps); REPEATS to 5. Both binaries use the threads OMP_NUM_THREADS gives.
+# nodes, 200 steps); REPEATS to 5. Both binaries use the threads OMP_NUM_THREADS gives, and run
+# under LAUNCH when set (e.g. LAUNCH="mpirun -np 2 -x OMP_NUM_THREADS=1 --bind-to core"); SET adds
+# --set overrides (e.g. SET="output.history_every=1"). METRIC=run counts the whole run loop
+# (time stepping, syncs and outputs: bond evaluations over the wall time less the set-up).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 rev=${1:?usage: bench/compare_revisions.sh REV [DECK] [REPEATS]}
@@ -22,8 +25,10 @@ if [[ ! -x $work/build/periadapt ]]; then
 fi
 out=$(mktemp -d); trap 'rm -rf "$out"' EXIT
 rate() {  # binary -> bond evaluations per second
-  "$1" run "$deck" --quiet --set "output.directory=$out/run" > /dev/null
-  python3 -c "import json; print(json.load(open('$out/run/summary.json'))['bond_evals_per_s'])"
+  local sets=()
+  for s in ${SET:-}; do sets+=(--set "$s"); done
+  ${LAUNCH:-} "$1" run "$deck" --quiet --set "output.directory=$out/run" "${sets[@]}" > /dev/null
+  python3 -c "import json; j = json.load(open('$out/run/summary.json')); print(j['bond_evals_per_s'] if '${METRIC:-}' != 'run' else j['bond_evaluations'] / (j['wall_time_s'] - j['setup_time_s']))"
 }
 old=(); new=()
 for ((k = 0; k < repeats; ++k)); do

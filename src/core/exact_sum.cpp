@@ -1,48 +1,12 @@
 #include "core/exact_sum.hpp"
 
-#include <bit>
 #include <cmath>
 
 namespace periadapt {
 
 namespace {
 constexpr std::int64_t kDigit = std::int64_t{1} << 32;
-// A limb absorbs terms of less than 2^32 each: normalizing every 2^30 terms keeps it far from
-// 2^63.
-constexpr std::uint32_t kNormalizeEvery = 1u << 30;
 }  // namespace
-
-void ExactSum::add(double x) {
-  const auto bits = std::bit_cast<std::uint64_t>(x);
-  const int biased = static_cast<int>((bits >> 52) & 0x7ff);
-  if (biased == 0x7ff) {
-    special_ += x;
-    return;
-  }
-  std::uint64_t mantissa = bits & ((std::uint64_t{1} << 52) - 1);
-  // x = mantissa x 2^(position - 1074): subnormals at position 0, normals above.
-  int position = 0;
-  if (biased > 0) {
-    mantissa |= std::uint64_t{1} << 52;
-    position = biased - 1;
-  }
-  if (mantissa == 0) return;
-  const unsigned __int128 shifted = static_cast<unsigned __int128>(mantissa) << (position & 31);
-  const int k = position >> 5;
-  const auto d0 = static_cast<std::int64_t>(shifted & 0xffffffffu);
-  const auto d1 = static_cast<std::int64_t>((shifted >> 32) & 0xffffffffu);
-  const auto d2 = static_cast<std::int64_t>(shifted >> 64);
-  if (bits >> 63) {
-    limb_[k] -= d0;
-    limb_[k + 1] -= d1;
-    limb_[k + 2] -= d2;
-  } else {
-    limb_[k] += d0;
-    limb_[k + 1] += d1;
-    limb_[k + 2] += d2;
-  }
-  if (++pending_ == kNormalizeEvery) normalize();
-}
 
 void ExactSum::add(const ExactSum& other) {
   ExactSum o = other;

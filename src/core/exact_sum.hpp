@@ -6,6 +6,7 @@
 // Each term costs a few integer additions. value() rounds the exact sum to a double
 // deterministically (within one unit in the last place); infinities and NaN propagate.
 #include <array>
+#include <bit>
 #include <cstdint>
 
 namespace periadapt {
@@ -15,8 +16,30 @@ class ExactSum {
   // 32-bit digits in 64-bit limbs: 64 limbs span the doubles' 2,098 bit positions with a mantissa
   // crossing three of them; the limbs above take the carries and the sign.
   static constexpr int kLimbs = 68;
+  // A limb absorbs terms of less than 2^32 each: normalizing every 2^30 terms keeps it far from
+  // 2^63.
+  static constexpr std::uint32_t kNormalizeEvery = 1u << 30;
 
-  void add(double x);
+  // Inline: the history adds one term per node.
+  void add(double x) {
+    const auto bits = std::bit_cast<std::uint64_t>(x);
+    const auto biased = static_cast<int>((bits >> 52) & 0x7ff);
+    if (biased == 0x7ff) [[unlikely]] {
+      special_ += x;
+      return;
+    }
+    // x = mantissa x 2^(position - 1074): subnormals at position 0, normals above.
+    const std::uint64_t normal = biased > 0;
+    const std::uint64_t mantissa = (bits & ((std::uint64_t{1} << 52) - 1)) | (normal << 52);
+    const int position = biased - static_cast<int>(normal);
+    const unsigned __int128 shifted = static_cast<unsigned __int128>(mantissa) << (position & 31);
+    const std::int64_t sign = 1 - 2 * static_cast<std::int64_t>(bits >> 63);
+    std::int64_t* l = &limb_[static_cast<std::size_t>(position >> 5)];
+    l[0] += sign * static_cast<std::int64_t>(static_cast<std::uint64_t>(shifted) & 0xffffffffu);
+    l[1] += sign * static_cast<std::int64_t>(static_cast<std::uint64_t>(shifted >> 32) & 0xffffffffu);
+    l[2] += sign * static_cast<std::int64_t>(static_cast<std::uint64_t>(shifted >> 64));
+    if (++pending_ == kNormalizeEvery) [[unlikely]] normalize();
+  }
   void add(const ExactSum& other);
   ExactSum& operator+=(double x) {
     add(x);
