@@ -19,7 +19,7 @@ class HistoryObserver : public RunObserver {
   // Its sums are each rank's own nodes' (exact, added over the ranks), and damage and bond
   // counts are shared every step: a distributed step need not bring every node up to date.
   bool wants_state(const RunView&, long) const override { return false; }
-  bool sums_energy_over_own_rows() const override { return true; }
+  bool own_rows_suffice() const override { return true; }
   void save(ArchiveWriter& w) override;
   void restore(ArchiveReader& r, RunView& view) override;
   void finish(RunView& view, RunResult& result) override;

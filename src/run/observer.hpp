@@ -52,7 +52,7 @@ class RunView {
   // observers: from the step's own force pass when an observer asked for it
   // (RunObserver::wants_energy_density), else by a bond pass. In a distributed run the first
   // call of a step is collective, and the densities may be valid for this rank's own rows only
-  // (RunObserver::sums_energy_over_own_rows); the total is every rank's.
+  // (RunObserver::own_rows_suffice); the total is every rank's.
   const std::vector<double>& energy_density();
   double strain_energy();
 
@@ -76,8 +76,9 @@ class RunObserver {
   // Whether `step` needs the strain-energy density: the solver then keeps it from its force pass.
   virtual bool wants_energy_density(long /*step*/) const { return false; }
   // Whether the densities of each rank's own rows suffice (sums over the nodes, taken with
-  // analysis/energy.hpp's partition argument): a distributed step then need not share them all.
-  virtual bool sums_energy_over_own_rows() const { return false; }
+  // analysis/energy.hpp's partition argument; a snapshot's piece): a distributed step then need
+  // not share them all.
+  virtual bool own_rows_suffice() const { return false; }
   // Whether on_step(`step`) reads the nodes' state (distributed runs bring every node up to date
   // first; parallel/ghost_layer.hpp). Closing calls always get it.
   virtual bool wants_state(const RunView&, long /*step*/) const { return true; }

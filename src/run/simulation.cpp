@@ -318,7 +318,7 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
     for (const auto& o : observers)
       if (o->wants_energy_density(s)) {
         energy = true;
-        every_row = every_row || !o->sums_energy_over_own_rows();
+        every_row = every_row || !o->own_rows_suffice();
       }
     if (energy) vv.request_energy_at(s, every_row);
     bool ok = false;

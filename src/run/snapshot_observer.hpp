@@ -15,7 +15,10 @@ class SnapshotObserver : public RunObserver {
   explicit SnapshotObserver(const RunView& view);
   bool wants_energy_density(long step) const override;
   void on_step(RunView& view, long step, bool closing) override;
-  bool wants_state(const RunView&, long step) const override { return wants_energy_density(step); }
+  // A piece holds the rank's own rows, whose fields read its region only (their neighbours'
+  // positions and displacements; LPS: two layers): no node need be brought up to date.
+  bool wants_state(const RunView&, long) const override { return false; }
+  bool own_rows_suffice() const override { return true; }
   void save(ArchiveWriter& w) override;
   void restore(ArchiveReader& r, RunView& view) override;
   void finish(RunView& view, RunResult& result) override;

@@ -610,6 +610,8 @@ void VelocityVerlet::undo_last_step() {
   broken_total_ = saved_.broken_total;
   bond_evals_ = saved_.bond_evals;
   m_.impactors = saved_.impactors;
+  // The step is taken again: it counts once among the steps that advanced the regions alone.
+  if (ghost_step_) --m_.partition.region_steps;
 }
 
 std::vector<std::uint32_t> VelocityVerlet::rows_damaged_by_last_step() const {
