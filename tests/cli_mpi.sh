@@ -83,8 +83,14 @@ def strip(j):
     if isinstance(j, list): return [strip(v) for v in j]
     return j
 sa, sb = (strip(json.load(open(os.path.join(d, "summary.json")))) for d in (a, b))
+# The damage pictures (rank 0 draws them from what every rank holds), byte for byte.
+pngs = lambda d: sorted(f for f in os.listdir(d) if f.startswith("damage_") and f.endswith(".png"))
+if pngs(a) != pngs(b): sys.exit(f"other pictures: {pngs(a)} against {pngs(b)}")
+for f in pngs(a):
+    if open(os.path.join(a, f), "rb").read() != open(os.path.join(b, f), "rb").read():
+        sys.exit(f"{f} differs")
 if sa != sb: sys.exit("summary.json differs: " + ", ".join(k for k in sa if sa.get(k) != sb.get(k)))
-print(f"{len(snaps)} snapshots, history and summary equal")
+print(f"{len(snaps)} snapshots, {len(pngs(a))} pictures, history and summary equal")
 PY
 }
 
@@ -147,8 +153,14 @@ if ranks["partitions_made"] < 2: sys.exit(f"no repartition ({ranks})")
 if worst > limit: sys.exit(f"imbalance {worst} above {limit}")
 done = ranks["evaluation_imbalance"]
 if done > limit: sys.exit(f"bond evaluations' imbalance {done} above {limit}")
+# Events bring their window up to date, not every node (the repartitioning ones everything).
+if not 0 < ranks["window_events_resynced"] < ranks["window_events"]:
+    sys.exit(f"events synced their windows in {ranks['window_events']}, everything in "
+             f"{ranks['window_events_resynced']}")
 print(f"imbalance <= {worst:.4f} over {len(rows)} rows, {ranks['partitions_made']} partitions, "
-      f"{ranks['events_kept_partition']} events kept the partition; evaluations {done:.4f}")
+      f"{ranks['events_kept_partition']} events kept the partition; evaluations {done:.4f}; "
+      f"{ranks['window_events']} events synced their windows, {ranks['window_events_resynced']} "
+      f"of them everything after repartitioning")
 PY
     ); then echo "ok   $name, $first ranks: $r"; else echo "FAIL $name: $r"; fail=1; fi
   fi

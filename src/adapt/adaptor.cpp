@@ -114,21 +114,63 @@ const std::vector<char>& Adaptor::refinable() {
   return refinable_;
 }
 
+namespace {
+
+// The rows and their neighbours, ascending: `rows` where every rank holds them; else each
+// owner lists its own (collective).
+std::vector<std::uint32_t> rows_and_neighbours(const Model& m, const std::vector<std::uint32_t>& rows,
+                                               bool held_everywhere) {
+  const BondFamilies& bf = m.bonds;
+  const RowPartition& p = m.partition;
+  std::vector<std::uint32_t> out;
+  for (std::uint32_t i : rows) {
+    if (!held_everywhere && !(i < p.mine.size() && p.mine[i])) continue;
+    out.push_back(i);
+    for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) out.push_back(bf.neighbor[k]);
+  }
+  if (!held_everywhere) out = mpi::all_gather(out);
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+}  // namespace
+
+bool Adaptor::window_sync() const {
+  // What an event reads of the kinematic state (docs/distributed.md, "Refinement events"): the
+  // parents' families, sums taken exactly over each rank's own nodes, and for the refresh the
+  // rebuilt rows' new families. The options that read the whole model's energy or state, and
+  // formulations whose regions reach two families, sync everything.
+  return m_.partition.rows_held && vv_.owned_integration() && m_.formulation.row_local() &&
+         spec_.method == NodeGeneration::B && !spec_.conserve_energy && spec_.relax_sweeps == 0 &&
+         !spec_.coarsen;
+}
+
 void Adaptor::refine(const std::vector<std::uint32_t>& parents, std::size_t identified,
                      const char* trigger) {
   if (parents.empty()) return;
-  vv_.sync_state();
+  // Each rank keeps its region current between syncs; the event reads the parents' families
+  // (their owners hold them and send them), and the owners before a repartition send the rest.
+  const bool window = window_sync();
+  const std::vector<int> owners_before = window ? m_.partition.owner : std::vector<int>{};
+  const long partitions_before = m_.partition.partitions;
+  if (window)
+    vv_.sync_nodes(rows_and_neighbours(m_, parents, false));
+  else
+    vv_.sync_state();
   const auto t0 = std::chrono::steady_clock::now();
   RefinementEvent ev;
   ev.step = vv_.step_count();
   ev.time = vv_.time();
   ev.trigger = trigger;
   ev.identified = identified;
-  vv_.synchronize_velocities();
+  vv_.synchronize_velocities(!window);
   const double h0 = spec_.conserve_energy ? total_energy() : 0.0;
   refinable_valid_ = false;
   const std::size_t first_new = m_.nodes.size();
   ev.stats = refine_nodes(m_, parents, spec_, spec_.refine_loads);
+  // The refresh reads the rebuilt rows' new neighbours (every rank holds those rows now).
+  if (window) vv_.sync_nodes(rows_and_neighbours(m_, ev.stats.rebuilt, true));
   const std::vector<std::uint32_t> moved = relax_event_rows(m_, ev.stats.rebuilt, first_new, spec_.relax_sweeps);
   if (spec_.conserve_energy) restore_energy(h0, ev.stats.rebuilt);
   std::size_t active = 0;
@@ -147,14 +189,24 @@ void Adaptor::refine(const std::vector<std::uint32_t>& parents, std::size_t iden
         "refinement at t = {:.4e} s made the time step unstable: dt = {:.4e} s exceeds the stable "
         "step {:.4e} s of the refined grid (node {}, level {}); lower solver.time_step",
         vv_.time(), vv_.dt(), s.dt, s.node, static_cast<int>(m_.nodes.level[s.node])));
+  if (window) {
+    // The partition the refresh's pass would make: a repartition hands rows to ranks whose
+    // copies of them and their neighbours are stale, so their previous owners send everything.
+    refresh_partition(m_.partition, m_.nodes, m_.bonds);
+    ++m_.partition.window_events;
+    if (m_.partition.partitions != partitions_before) {
+      vv_.sync_state_from(owners_before);
+      ++m_.partition.window_events_resynced;
+    }
+  }
   if (moved.empty()) {
-    vv_.refresh(&ev.stats.rebuilt);
+    vv_.refresh(&ev.stats.rebuilt, !window);
   } else {
     std::vector<std::uint32_t> rows = ev.stats.rebuilt;
     rows.insert(rows.end(), moved.begin(), moved.end());
     std::sort(rows.begin(), rows.end());
     rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
-    vv_.refresh(&rows);
+    vv_.refresh(&rows, !window);
   }
   // The event's cost includes the refresh (forces of the rebuilt rows, their step rates).
   events_.back().stats.seconds =

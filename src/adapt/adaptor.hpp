@@ -43,6 +43,8 @@ class Adaptor {
   std::size_t nodes_removed() const;  // children returned to their parents by coarsening
   // Whether a distributed run may hold its ranks' own bond rows (parallel/held_rows.hpp): every
   // row the steps and events read outside an event's window is then a rank's own.
+  // Whether an event brings only what it reads up to date (its window) rather than every node.
+  bool window_sync() const;
   bool rows_can_be_held() const;
   // Checkpoints: the event log (the triggers keep no state between steps).
   void save_state(ArchiveWriter& w) const;

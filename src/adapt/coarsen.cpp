@@ -59,7 +59,7 @@ RefineStats coarsen_nodes(Model& m, const std::vector<std::uint32_t>& parents) {
   RefineStats st;
   NodeSet& ns = m.nodes;
   if (parents.empty()) return st;
-  const MomentumAndKinetic before = momentum_and_kinetic(ns);
+  const MomentumAndKinetic before = momentum_and_kinetic(ns, m.partition.active ? &m.partition : nullptr);
   st.momentum_before = before.momentum;
   st.kinetic_before = before.kinetic;
   st.momentum_scale = before.momentum_scale;
@@ -97,7 +97,7 @@ RefineStats coarsen_nodes(Model& m, const std::vector<std::uint32_t>& parents) {
   std::vector<char> changed(vanishing);
   for (std::uint32_t p : parents) changed[p] = 1;
   st.rebuilt = rebuild_families(m, memory, ns.size(), changed);
-  const MomentumAndKinetic after = momentum_and_kinetic(ns);
+  const MomentumAndKinetic after = momentum_and_kinetic(ns, m.partition.active ? &m.partition : nullptr);
   st.momentum_after = after.momentum;
   st.kinetic_after = after.kinetic;
   st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

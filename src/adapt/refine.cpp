@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "analysis/energy.hpp"
 #include "core/cell_grid.hpp"
 #include "core/geometry.hpp"
 #include "discretize/lattice_moment.hpp"
@@ -166,13 +167,12 @@ RefineStats refine_nodes(Model& m, std::vector<std::uint32_t> parents, const Ada
   // Re-anchored children carry the other face's velocity, so the parents' momentum is not
   // reproduced exactly: a uniform velocity shift of all new nodes restores it (as in method A).
   if (st.reanchored > 0) {
-    double P[3] = {0, 0, 0}, M = 0;
-    for (std::size_t i = 0; i < ns.size(); ++i) {
-      if (!(ns.flags[i] & kActive)) continue;
-      const double mi = ns.density[i] * ns.volume[i];
-      for (int d = 0; d < D; ++d) P[d] += mi * ns.v[d][i];
-      if (i >= n0) M += mi;
-    }
+    // Exact sums of each rank's own nodes (analysis/energy.hpp): the serial run's bits.
+    const std::array<double, 3> P =
+        momentum_and_kinetic(ns, m.partition.active ? &m.partition : nullptr).momentum;
+    double M = 0;
+    for (std::size_t i = n0; i < ns.size(); ++i)
+      if (ns.flags[i] & kActive) M += ns.density[i] * ns.volume[i];
     for (std::size_t q = n0; q < ns.size(); ++q)
       for (int d = 0; d < D; ++d) ns.v[d][q] += (st.momentum_before[d] - P[d]) / M;
   }

@@ -15,7 +15,7 @@ std::vector<char> begin_refinement(Model& m, std::vector<std::uint32_t>& parents
   std::sort(parents.begin(), parents.end());
   parents.erase(std::unique(parents.begin(), parents.end()), parents.end());
   if (parents.empty()) return {};
-  const MomentumAndKinetic pk = momentum_and_kinetic(m.nodes);
+  const MomentumAndKinetic pk = momentum_and_kinetic(m.nodes, m.partition.active ? &m.partition : nullptr);
   st.momentum_before = pk.momentum;
   st.kinetic_before = pk.kinetic;
   st.momentum_scale = pk.momentum_scale;
@@ -214,7 +214,7 @@ void finish_refinement(Model& m, const AdaptSpec& spec, const CrackMemory& memor
   // Method B switches parents off and appends children; method A also shrinks the parents'
   // spacing, which the rows around them see.
   st.rebuilt = rebuild_families(m, memory, n0, changed, spec.method == NodeGeneration::B);
-  const MomentumAndKinetic pk = momentum_and_kinetic(ns);
+  const MomentumAndKinetic pk = momentum_and_kinetic(ns, m.partition.active ? &m.partition : nullptr);
   st.momentum_after = pk.momentum;
   st.kinetic_after = pk.kinetic;
   st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

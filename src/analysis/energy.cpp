@@ -51,32 +51,33 @@ double strain_energy(const Model& model, std::vector<double>& W) {
   return strain_energy_of(model.nodes, W);
 }
 
-MomentumAndKinetic momentum_and_kinetic(const NodeSet& ns) {
-  constexpr std::size_t kBlock = 4096;
-  const std::size_t n = ns.size(), nb = (n + kBlock - 1) / kBlock;
-  std::vector<std::array<double, 5>> part(nb, {0, 0, 0, 0, 0});
-#pragma omp parallel for schedule(static)
-  for (std::size_t b = 0; b < nb; ++b) {
-    std::array<double, 5> s{0, 0, 0, 0, 0};
-    for (std::size_t i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i) {
-      if (!(ns.flags[i] & kActive)) continue;
+MomentumAndKinetic momentum_and_kinetic(const NodeSet& ns, const RowPartition* p) {
+  const CountedNodes counted = counted_nodes(p, ns.size());
+  const std::size_t n = ns.size();
+  std::array<ExactSum, 5> total;  // momentum (3), kinetic energy, sum of m |v|
+#pragma omp parallel
+  {
+    std::array<ExactSum, 5> mine;
+#pragma omp for schedule(static) nowait
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!(ns.flags[i] & kActive) || !counted(i)) continue;
       const double mass = ns.density[i] * ns.volume[i];
       double v2 = 0;
       for (int d = 0; d < ns.dim; ++d) {
-        s[static_cast<std::size_t>(d)] += mass * ns.v[d][i];
+        mine[static_cast<std::size_t>(d)].add(mass * ns.v[d][i]);
         v2 += ns.v[d][i] * ns.v[d][i];
       }
-      s[3] += 0.5 * mass * v2;
-      s[4] += mass * std::sqrt(v2);
+      mine[3].add(0.5 * mass * v2);
+      mine[4].add(mass * std::sqrt(v2));
     }
-    part[b] = s;
+#pragma omp critical(periadapt_momentum_sum)
+    for (std::size_t k = 0; k < total.size(); ++k) total[k].add(mine[k]);
   }
+  add_over_ranks(p, total.data(), total.size());
   MomentumAndKinetic r;
-  for (const auto& s : part) {
-    for (int d = 0; d < 3; ++d) r.momentum[static_cast<std::size_t>(d)] += s[static_cast<std::size_t>(d)];
-    r.kinetic += s[3];
-    r.momentum_scale += s[4];
-  }
+  for (std::size_t d = 0; d < 3; ++d) r.momentum[d] = total[d].value();
+  r.kinetic = total[3].value();
+  r.momentum_scale = total[4].value();
   return r;
 }
 

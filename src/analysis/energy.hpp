@@ -25,8 +25,8 @@ struct MomentumAndKinetic {
   double kinetic = 0;
   double momentum_scale = 0;  // sum of m |v|: the yardstick for momentum changes (|p| may be 0)
 };
-// Both in one parallel pass, summed in fixed blocks combined in order: the same bits for any
-// number of threads. kinetic_energy and linear_momentum are its two halves.
-MomentumAndKinetic momentum_and_kinetic(const NodeSet& nodes);
+// Both in one pass of exact sums over the active nodes (collective under an active partition
+// `p`, as above). linear_momentum is its first half.
+MomentumAndKinetic momentum_and_kinetic(const NodeSet& nodes, const RowPartition* p = nullptr);
 
 }  // namespace periadapt

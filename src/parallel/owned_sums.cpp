@@ -1,5 +1,7 @@
 #include "parallel/owned_sums.hpp"
 
+#include <algorithm>
+
 #include "parallel/mpi_env.hpp"
 
 namespace periadapt {
@@ -7,11 +9,9 @@ namespace periadapt {
 CountedNodes counted_nodes(const RowPartition* p, std::size_t n) {
   CountedNodes c;
   if (p == nullptr || !p->active) return c;
-  if (p->mine.size() == n) {
-    c.mine = p->mine.data();
-  } else {
-    c.none = mpi::rank() != 0;
-  }
+  c.mine = p->mine.data();
+  c.covered = std::min(p->mine.size(), n);
+  c.beyond = mpi::rank() == 0;
   return c;
 }
 

@@ -11,14 +11,15 @@
 namespace periadapt {
 
 struct CountedNodes {
-  const char* mine = nullptr;  // per node: this rank adds it; null: every node
-  bool none = false;           // this rank adds no node
-  bool operator()(std::size_t i) const { return !none && (mine == nullptr || mine[i] != 0); }
+  const char* mine = nullptr;  // per node below `covered`: this rank adds it
+  std::size_t covered = 0;
+  bool beyond = true;          // whether this rank adds the nodes from `covered` on
+  bool operator()(std::size_t i) const { return i < covered ? mine[i] != 0 : beyond; }
 };
 
 // The nodes this rank adds out of `n`: its own under an active partition `p` (null: serial).
-// A partition not yet made for these nodes leaves them all to rank 0 (every rank then holds the
-// same state).
+// Nodes the partition has not seen yet (an event's children, which every rank computes alike)
+// are rank 0's.
 CountedNodes counted_nodes(const RowPartition* p, std::size_t n);
 
 // Adds the ranks' accumulators (collective under an active partition; else nothing to do).

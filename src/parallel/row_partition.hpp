@@ -59,6 +59,9 @@ struct RowPartition {
   std::size_t ghosts = 0;  // nodes of this rank's region it does not own
   long region_generation = -1;
   long region_steps = 0;  // steps that integrated the region alone
+  // Refinement events that brought only their window up to date, and those of them whose
+  // repartition then had the previous owners send everything.
+  long window_events = 0, window_events_resynced = 0;
   // Held bond rows (parallel/held_rows.hpp): this rank's bond arrays hold the rows its passes
   // read and no others (rows_held), searched so at set-up or, in a run that asks for them
   // (hold_rows) after reading whole arrays (a restart), kept so by its first pass; the whole

@@ -25,6 +25,8 @@ nlohmann::json ranks_json(const RowPartition& p, double owned_evaluations) {
           {"ghost_nodes_rank0", p.ghost_mode ? nlohmann::json(p.ghosts) : nlohmann::json(nullptr)},
           {"ghost_peers_rank0", p.ghost_mode ? nlohmann::json(p.peers.size()) : nlohmann::json(nullptr)},
           {"region_steps", p.region_steps},
+          {"window_events", p.window_events},
+          {"window_events_resynced", p.window_events_resynced},
           {"held_bond_rows", p.rows_held},
           {"bond_rows_rank0", p.rows_held ? nlohmann::json(p.held_row_count) : nlohmann::json(nullptr)}};
   if (owned_evaluations >= 0) {

@@ -332,8 +332,8 @@ double VelocityVerlet::owned_bonds_of_pass(const std::vector<std::uint32_t>* row
   return s;
 }
 
-void VelocityVerlet::synchronize_velocities() {
-  sync_state();
+void VelocityVerlet::synchronize_velocities(bool sync) {
+  if (sync) sync_state();
   if (!multirate_ || syncing_) return;
   syncing_ = true;
   synced_.clear();
@@ -563,8 +563,8 @@ void VelocityVerlet::initialize() {
   last_power_ = external_power();
 }
 
-void VelocityVerlet::refresh(const std::vector<std::uint32_t>* rows) {
-  sync_state();
+void VelocityVerlet::refresh(const std::vector<std::uint32_t>* rows, bool sync) {
+  if (sync) sync_state();
   ghost_step_ = false;
   m_.nodes.sync_all_current();
   apply_loads(time_);
@@ -663,6 +663,88 @@ void VelocityVerlet::sync_state() {
     v_prev_fixed_[q] = all[at[r]++];
   }
   stale_ = false;
+}
+
+void VelocityVerlet::sync_nodes(const std::vector<std::uint32_t>& ids) {
+  if (stale_) sync_from(m_.partition.owner, &ids);
+}
+
+void VelocityVerlet::sync_state_from(const std::vector<int>& owner) {
+  if (!stale_) return;
+  sync_from(owner, nullptr);
+  stale_ = false;
+}
+
+void VelocityVerlet::sync_from(const std::vector<int>& owner, const std::vector<std::uint32_t>* ids) {
+  NodeSet& ns = m_.nodes;
+  const int D = ns.dim, me = mpi::rank();
+  // The per-row values owners keep (sync_state()), as far as the owners' list reaches: an
+  // event's new rows have none yet.
+  std::vector<std::vector<double>*> per_row;
+  if (m_.track_breakable_stretch && m_.breakable_stretch.size() >= owner.size())
+    per_row.push_back(&m_.breakable_stretch);
+  if (multirate_ && energy_check_every_ > 0 && energy_.size() >= owner.size())
+    per_row.push_back(&energy_);
+  const std::size_t width = 4 * static_cast<std::size_t>(D) + per_row.size();
+  // Each rank's nodes in the set, in id order: what every rank knows of the others' lists.
+  std::vector<std::vector<std::uint32_t>> of(static_cast<std::size_t>(mpi::size()));
+  std::vector<char> in_set(ns.size(), 0);
+  auto take = [&](std::size_t i) {
+    if (i >= owner.size() || owner[i] < 0) return;
+    of[static_cast<std::size_t>(owner[i])].push_back(static_cast<std::uint32_t>(i));
+    in_set[i] = 1;
+  };
+  if (ids)
+    for (std::uint32_t i : *ids) take(i);
+  else
+    for (std::size_t i = 0; i < owner.size(); ++i) take(i);
+  std::vector<double> values;
+  values.reserve(of[static_cast<std::size_t>(me)].size() * width);
+  for (std::uint32_t i : of[static_cast<std::size_t>(me)]) {
+    for (const auto* field : {&ns.u, &ns.v, &ns.a, &ns.f})
+      for (int d = 0; d < D; ++d) values.push_back((*field)[d][i]);
+    for (const std::vector<double>* w : per_row) values.push_back((*w)[i]);
+  }
+  // The prescribed components' reactions and start-of-step velocities of those nodes.
+  std::vector<double> fixed;
+  for (std::size_t q = 0; q < fixed_dofs_.size(); ++q) {
+    const std::size_t i = fixed_dofs_[q] / 3;
+    if (in_set[i] && owner[i] == me) {
+      fixed.push_back(reaction_[q]);
+      fixed.push_back(v_prev_fixed_[q]);
+    }
+  }
+  std::vector<int> counts, fixed_counts;
+  const std::vector<double> all = mpi::all_gather(values, &counts);
+  const std::vector<double> all_fixed = mpi::all_gather(fixed, &fixed_counts);
+  std::size_t at = 0;
+  for (std::size_t r = 0; r < of.size(); ++r) {
+    if (static_cast<int>(r) == me) {
+      at += of[r].size() * width;
+      continue;
+    }
+    for (std::uint32_t i : of[r]) {
+      const double* v = &all[at];
+      at += width;
+      for (auto* field : {&ns.u, &ns.v, &ns.a, &ns.f})
+        for (int d = 0; d < D; ++d) (*field)[d][i] = *v++;
+      for (std::vector<double>* w : per_row) (*w)[i] = *v++;
+      ns.sync_current(i);
+    }
+  }
+  std::vector<std::size_t> fat(fixed_counts.size(), 0);
+  for (std::size_t r = 1; r < fixed_counts.size(); ++r)
+    fat[r] = fat[r - 1] + static_cast<std::size_t>(fixed_counts[r - 1]);
+  for (std::size_t q = 0; q < fixed_dofs_.size(); ++q) {
+    const std::size_t i = fixed_dofs_[q] / 3;
+    if (!in_set[i]) continue;
+    const auto r = static_cast<std::size_t>(owner[i]);
+    if (static_cast<int>(r) != me) {
+      reaction_[q] = all_fixed[fat[r]];
+      v_prev_fixed_[q] = all_fixed[fat[r] + 1];
+    }
+    fat[r] += 2;
+  }
 }
 
 bool VelocityVerlet::region_step_allowed() {

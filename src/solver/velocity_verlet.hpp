@@ -61,6 +61,12 @@ class VelocityVerlet {
   // node up to date, and each step decides together whether it may leave nodes stale.
   bool enable_owned_integration();
   void sync_state();
+  // Brings the listed nodes (ascending, the same list on every rank) up to date from their
+  // owners, leaving the others as they are (a refinement event's window). Collective.
+  void sync_nodes(const std::vector<std::uint32_t>& ids);
+  // sync_state() from the owners `owner` gave the nodes (before a repartition handed rows to
+  // ranks whose copies are stale); nodes beyond it are current on every rank. Collective.
+  void sync_state_from(const std::vector<int>& owner);
   bool owned_integration() const { return m_.partition.ghost_mode; }
 
   void set_undo(bool on) { undo_enabled_ = on; }
@@ -70,7 +76,8 @@ class VelocityVerlet {
   // Recomputes loads and accelerations at the current state; call after the grid changed.
   // `rows` (optional): the bond rows the change touched; where a node's force depends on its own
   // row only (plain PMB) just these forces are computed again, the others being unchanged.
-  void refresh(const std::vector<std::uint32_t>* rows = nullptr);
+  // `sync` false: the caller brought what the pass reads up to date (an event's window).
+  void refresh(const std::vector<std::uint32_t>* rows = nullptr, bool sync = true);
   // Asks the force passes that reach step `step` (the step itself, a redo of it, a refresh at
   // it) to write every node's strain-energy density on the way: the bond loop then serves both,
   // instead of a second pass over the bonds (history samples, the energy trigger).
@@ -92,7 +99,7 @@ class VelocityVerlet {
   // interpolate, and the event's momentum and kinetic energy use, one instant. refresh() gives
   // the nodes that go on with their cycle a half-step velocity again, from their acceleration
   // after the event.
-  void synchronize_velocities();
+  void synchronize_velocities(bool sync = true);
   // Per node: its step in units of dt (empty without multi-rate stepping).
   const std::vector<std::uint8_t>& rates() const { return rate_; }
   // Multi-rate stepping: every row's density from its own latest force pass (a slow row's is up
@@ -162,6 +169,8 @@ class VelocityVerlet {
   double runaway_limit_ = 0.0;
   DivergenceError divergence_{};
   bool undo_enabled_ = false;
+  // Every node's values from `owner`, or the listed ones' (null: all below owner.size()).
+  void sync_from(const std::vector<int>& owner, const std::vector<std::uint32_t>* ids);
   bool stale_ = false;       // owned integration: nodes outside this rank's region lag
   bool ghost_step_ = false;  // this step integrates the region only
   std::vector<std::uint32_t> region_rows_;  // step scratch: a partial pass's rows in the region
