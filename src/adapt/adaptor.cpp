@@ -149,13 +149,14 @@ bool Adaptor::window_sync() const {
 void Adaptor::refine(const std::vector<std::uint32_t>& parents, std::size_t identified,
                      const char* trigger) {
   if (parents.empty()) return;
-  // Each rank keeps its region current between syncs; the event reads the parents' families
-  // (their owners hold them and send them), and the owners before a repartition send the rest.
+  // Each rank keeps its region current between syncs; the event reads the parents' families and
+  // their members' (a child across a crack takes a visible neighbour's own gradient): each
+  // member's owner sends it, and the owners before a repartition send the rest.
   const bool window = window_sync();
   const std::vector<int> owners_before = window ? m_.partition.owner : std::vector<int>{};
   const long partitions_before = m_.partition.partitions;
   if (window)
-    vv_.sync_nodes(rows_and_neighbours(m_, parents, false));
+    vv_.sync_nodes(rows_and_neighbours(m_, rows_and_neighbours(m_, parents, false), false));
   else
     vv_.sync_state();
   const auto t0 = std::chrono::steady_clock::now();
