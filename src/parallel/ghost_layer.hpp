@@ -4,9 +4,9 @@
 // and their neighbours; each rank sums the external work of its own loaded and driven nodes),
 // and after each pass receives from their owners the forces of the region's nodes it does not
 // own. The nodes outside its region go stale; a sync gathers every node's state from its owner
-// whenever something reads the whole model (outputs, triggers, events, checkpoints), so that
-// every rank then holds what the serial run holds, bit for bit (the external work, summed per rank,
-// up to round-off).
+// whenever something reads the whole model (checkpoints, the end of the run, events that
+// repartition or read beyond their window), so that every rank then holds what the serial run
+// holds, bit for bit. The outputs sum each rank's own nodes exactly (parallel/owned_sums.hpp).
 #include <cstdint>
 #include <vector>
 
