@@ -138,8 +138,8 @@ std::vector<std::uint32_t> rows_and_neighbours(const Model& m, const std::vector
 
 bool Adaptor::window_sync() const {
   // What an event reads of the kinematic state (docs/distributed.md, "Refinement events"): the
-  // parents' families, sums taken exactly over each rank's own nodes, and for the refresh the
-  // rebuilt rows' new families. The options that read the whole model's energy or state, and
+  // parents' families and their members' families, sums taken exactly over each rank's own
+  // nodes, and for the refresh the rebuilt rows' new families. The options that read the whole model's energy or state, and
   // formulations whose regions reach two families, sync everything.
   return m_.partition.rows_held && vv_.owned_integration() && m_.formulation.row_local() &&
          spec_.method == NodeGeneration::B && !spec_.conserve_energy && spec_.relax_sweeps == 0 &&
