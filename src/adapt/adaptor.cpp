@@ -122,15 +122,28 @@ std::vector<std::uint32_t> rows_and_neighbours(const Model& m, const std::vector
                                                bool held_everywhere) {
   const BondFamilies& bf = m.bonds;
   const RowPartition& p = m.partition;
+  // Two families' reach repeats each node about a family's size of times: a mark per node keeps
+  // the list (and what the ranks exchange) to distinct ids.
+  std::vector<char> seen(m.nodes.size(), 0);
   std::vector<std::uint32_t> out;
+  auto add = [&](std::uint32_t j) {
+    if (!seen[j]) {
+      seen[j] = 1;
+      out.push_back(j);
+    }
+  };
   for (std::uint32_t i : rows) {
     if (!held_everywhere && !(i < p.mine.size() && p.mine[i])) continue;
-    out.push_back(i);
-    for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) out.push_back(bf.neighbor[k]);
+    add(i);
+    for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) add(bf.neighbor[k]);
   }
-  if (!held_everywhere) out = mpi::all_gather(out);
+  if (!held_everywhere) {
+    std::vector<std::uint32_t> all = mpi::all_gather(out);
+    for (std::uint32_t j : out) seen[j] = 0;
+    out.clear();
+    for (std::uint32_t j : all) add(j);
+  }
   std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;
 }
 
