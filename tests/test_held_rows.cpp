@@ -9,11 +9,13 @@
 #include <functional>
 #include <map>
 
+#include "adapt/refine.hpp"
 #include "input/deck_builder.hpp"
 #include "model/model_state.hpp"
 #include "discretize/families.hpp"
 #include "parallel/held_rows.hpp"
 #include "setup/build_model.hpp"
+#include "test_helpers.hpp"
 
 using namespace periadapt;
 
@@ -113,6 +115,45 @@ TEST(HeldRows, RowsGrownByFamiliesAreTheFamiliesMembers) {
   for (char c : rows) held += c != 0;
   EXPECT_GT(held, bf.end(0) - bf.begin(0) + 1);  // beyond the corner's own family
   EXPECT_LT(held, n);                            // and not the whole plate
+}
+
+// After a refinement event the rows a rank has are current, and their bond lists give the same
+// two layers as the search: on a plate refined in two zones (the refined parents inactive, rows
+// of two sizes), from rows on both levels and a refined parent, with every other row listed and
+// with none.
+TEST(HeldRows, ListedRowsGrowAsTheSearchDoes) {
+  Model m = build_model(plate_deck(24, 16).build("held rows, refined plate"));
+  AdaptSpec spec;
+  spec.enabled = true;
+  refine_nodes(m, test::active_near(m.nodes, 8, 8, 3, 0), spec);
+  refine_nodes(m, test::active_near(m.nodes, 17, 6, 2, 0), spec);
+  const std::size_t n = m.nodes.size();
+  ASSERT_EQ(m.bonds.num_nodes(), n);
+  // A corner, the first refined parent, the first and the last child, and a coarse node at
+  // the second zone's edge.
+  std::vector<char> seeds(n, 0);
+  seeds[0] = seeds[n - 1] = 1;
+  std::size_t parent = n, child = n;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (parent == n && !(m.nodes.flags[i] & kActive)) parent = i;
+    if (child == n && m.nodes.level[i] == 1) child = i;
+  }
+  ASSERT_LT(parent, n);
+  ASSERT_LT(child, n);
+  seeds[parent] = seeds[child] = 1;
+  seeds[test::active_near(m.nodes, 19.5, 6, 0.6, 0).at(0)] = 1;
+  std::vector<char> searched(seeds);
+  grow_by_families(m.nodes, m.quadrature, searched, 2);
+  std::vector<char> every(n, 1), alternate(n, 0);
+  for (std::size_t i = 0; i < n; i += 2) alternate[i] = 1;
+  for (const std::vector<char>* listed : {&every, &alternate}) {
+    std::vector<char> grown(seeds);
+    grow_by_families(m.nodes, m.quadrature, grown, 2, &m.bonds, listed);
+    EXPECT_EQ(grown, searched);
+  }
+  std::size_t held = 0;
+  for (char c : searched) held += c != 0;
+  EXPECT_LT(held, n);  // two layers, not the whole plate
 }
 
 // After a refinement event a rank holds its rows again where they lie in its arrays (rebuilt rows

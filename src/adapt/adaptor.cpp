@@ -152,9 +152,10 @@ std::vector<std::uint32_t> rows_and_neighbours(const Model& m, const std::vector
 bool Adaptor::window_sync() const {
   // What an event reads of the kinematic state (docs/distributed.md, "Refinement events"): the
   // parents' families and their members' families, sums taken exactly over each rank's own
-  // nodes, and for the refresh the rebuilt rows' new families. The options that read the whole model's energy or state, and
-  // formulations whose regions reach two families, sync everything.
-  return m_.partition.rows_held && vv_.owned_integration() && m_.formulation.row_local() &&
+  // nodes, and for the refresh the rebuilt rows' new families (LPS: and their members' families,
+  // whose dilatations the refresh reads). The options that read the whole model's energy or
+  // state, and the dual pairing's transposed reach, sync everything.
+  return m_.partition.rows_held && vv_.owned_integration() && !m_.formulation.dual_horizon &&
          spec_.method == NodeGeneration::B && !spec_.conserve_energy && spec_.relax_sweeps == 0 &&
          !spec_.coarsen;
 }
@@ -183,8 +184,14 @@ void Adaptor::refine(const std::vector<std::uint32_t>& parents, std::size_t iden
   refinable_valid_ = false;
   const std::size_t first_new = m_.nodes.size();
   ev.stats = refine_nodes(m_, parents, spec_, spec_.refine_loads);
-  // The refresh reads the rebuilt rows' new neighbours (every rank holds those rows now).
-  if (window) vv_.sync_nodes(rows_and_neighbours(m_, ev.stats.rebuilt, true));
+  // The refresh reads the rebuilt rows' new neighbours (every rank holds those rows now); LPS
+  // also their neighbours' dilatations. A node the event brings into a rank's region is reached
+  // through a rebuilt family, so these layers are all that can be stale there.
+  if (window) {
+    std::vector<std::uint32_t> reach = rows_and_neighbours(m_, ev.stats.rebuilt, true);
+    if (m_.formulation.state_based()) reach = rows_and_neighbours(m_, reach, false);
+    vv_.sync_nodes(reach);
+  }
   const std::vector<std::uint32_t> moved = relax_event_rows(m_, ev.stats.rebuilt, first_new, spec_.relax_sweeps);
   if (spec_.conserve_energy) restore_energy(h0, ev.stats.rebuilt);
   std::size_t active = 0;

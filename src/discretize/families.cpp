@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 
 #include "core/cell_grid.hpp"
 
@@ -254,20 +255,36 @@ BondFamilies build_families(const NodeSet& nodes, const QuadratureSpec& quad, do
 }
 
 void grow_by_families(const NodeSet& nodes, const QuadratureSpec& quad, std::vector<char>& rows,
-                      int layers) {
+                      int layers, const BondFamilies* bonds, const std::vector<char>* current) {
   if (nodes.size() == 0 || layers < 1) return;
-  const FamilySearch search(nodes, quad);
+  // A row whose bond list is current has the search's members as its neighbours: those are read
+  // from the list, and the cell list is built only if some row has none.
+  auto listed = [&](std::uint32_t i) {
+    return bonds && current && i < current->size() && (*current)[i] && i < bonds->num_nodes();
+  };
+  std::optional<FamilySearch> search;
   std::vector<std::uint32_t> frontier;
+  // An inactive row (a refined parent) has no family.
   for (std::size_t i = 0; i < rows.size(); ++i)
-    if (rows[i]) frontier.push_back(static_cast<std::uint32_t>(i));
+    if (rows[i] && (nodes.flags[i] & kActive)) frontier.push_back(static_cast<std::uint32_t>(i));
   for (int layer = 0; layer < layers && !frontier.empty(); ++layer) {
     // Only the rows the last layer added have members not marked yet.
     std::vector<char> grown(rows);
+    auto mark = [&](std::uint32_t j) {
+      std::atomic_ref<char>(grown[j]).store(1, std::memory_order_relaxed);
+    };
+    bool unlisted = false;
+    for (std::uint32_t i : frontier) unlisted = unlisted || !listed(i);
+    if (unlisted && !search) search.emplace(nodes, quad);
 #pragma omp parallel for schedule(dynamic, 256)
-    for (std::size_t q = 0; q < frontier.size(); ++q)
-      search.visit(frontier[q], [&](std::uint32_t j, double, float) {
-        std::atomic_ref<char>(grown[j]).store(1, std::memory_order_relaxed);
-      });
+    for (std::size_t q = 0; q < frontier.size(); ++q) {
+      const std::uint32_t i = frontier[q];
+      if (listed(i)) {
+        for (std::uint64_t k = bonds->begin(i); k < bonds->end(i); ++k) mark(bonds->neighbor[k]);
+      } else {
+        search->visit(i, [&](std::uint32_t j, double, float) { mark(j); });
+      }
+    }
     frontier.clear();
     for (std::size_t i = 0; i < rows.size(); ++i)
       if (grown[i] && !rows[i]) frontier.push_back(static_cast<std::uint32_t>(i));

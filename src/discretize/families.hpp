@@ -25,9 +25,12 @@ BondFamilies build_families(const NodeSet& nodes, const QuadratureSpec& quadratu
                             double headroom = 0.0, const std::vector<char>* rows = nullptr);
 
 // Adds to `rows` (per node) every family member of its rows, `layers` times over, storing no
-// bond (the rows a distributed LPS rank holds around its own: parallel/held_rows.hpp).
+// bond (the rows a distributed LPS rank holds around its own: parallel/held_rows.hpp). Rows
+// flagged in `current` read their members from `bonds` (their lists must be what a search
+// gives now); the others are searched.
 void grow_by_families(const NodeSet& nodes, const QuadratureSpec& quadrature,
-                      std::vector<char>& rows, int layers);
+                      std::vector<char>& rows, int layers, const BondFamilies* bonds = nullptr,
+                      const std::vector<char>* current = nullptr);
 
 // The row begins build_families would give (its count pass; `rows` as there), with no bond
 // stored: what splitting the rows over ranks by their work needs before any rank searches them.

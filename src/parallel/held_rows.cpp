@@ -18,8 +18,8 @@ HeldReach held_reach(bool state_based, bool dual_horizon) {
 }
 
 void grow_held_rows(const NodeSet& ns, const QuadratureSpec& q, std::vector<char>& rows,
-                    HeldReach reach) {
-  if (reach == HeldReach::TwoFamilies) grow_by_families(ns, q, rows, 2);
+                    HeldReach reach, const BondFamilies* bonds, const std::vector<char>* current) {
+  if (reach == HeldReach::TwoFamilies) grow_by_families(ns, q, rows, 2, bonds, current);
   if (reach != HeldReach::Radius) return;
   double hmax = 0, dxmax = 0;
   for (std::size_t i = 0; i < ns.size(); ++i)
@@ -302,7 +302,11 @@ void rehold_rows(RowPartition& p, const NodeSet& ns, BondFamilies& bf, const Qua
     refresh_partition(p, ns, sizes);
   }
   std::vector<char> keep(p.mine.begin(), p.mine.end());
-  grow_held_rows(ns, q, keep, reach);
+  // The rows this rank has are current (an event rebuilt its window on every rank): their lists
+  // give their families without a search.
+  std::vector<char> listed(n);
+  for (std::size_t i = 0; i < n; ++i) listed[i] = present(i);
+  grow_held_rows(ns, q, keep, reach, &bf, &listed);
   // What this rank lacks comes from the row's previous owner, which held it: each rank asks
   // those owners, and they answer, point to point (a repartition moves many rows).
   const auto P = static_cast<std::size_t>(mpi::size());

@@ -42,9 +42,11 @@ void publish_rows(RowPartition& p, BondFamilies& bf, const std::vector<std::uint
 void rehold_rows(RowPartition& p, const NodeSet& ns, BondFamilies& bf, const QuadratureSpec& q,
                  HeldReach reach);
 
-// Marks in `rows` (per node) the rows `reach` adds to the marked ones.
+// Marks in `rows` (per node) the rows `reach` adds to the marked ones; rows flagged in `current`
+// read their families from `bonds` (grow_by_families).
 void grow_held_rows(const NodeSet& ns, const QuadratureSpec& q, std::vector<char>& rows,
-                    HeldReach reach);
+                    HeldReach reach, const BondFamilies* bonds = nullptr,
+                    const std::vector<char>* current = nullptr);
 
 // A run that holds its rows from the start (no rank ever holds the whole arrays): splits the
 // rows over the ranks by their sizes (the family search's count pass, storing no bond), then
