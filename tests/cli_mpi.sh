@@ -8,7 +8,8 @@
 # checkpoint written on 2 ranks (every 100 steps) restarts on 3 and ends as the serial run does
 # (with held rows, from bond pieces, which also restart a serial run; a serial checkpoint restarts
 # on 2 ranks holding their rows);
-# where the ranks integrate their own regions (parallel/ghost_layer.hpp), they did so on some steps;
+# where the ranks integrate their own regions (parallel/ghost_layer.hpp), they did so on some steps,
+# and no event that synced only its window left a region node stale;
 # an output failure on rank 0 stops every rank with exit code 4, and a diverging run stops every
 # rank with the serial run's diagnosis.
 # CLI_MPI_RANKS (default "2 3") names other rank counts. Skipped (exit 0 with a note) in a build
@@ -19,6 +20,9 @@ bin="$1"; shift
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 # Shared-memory transport only, and waiting ranks yield the core (oversubscribed runs).
 export OMPI_MCA_btl=self,vader OMPI_MCA_mpi_yield_when_idle=1
+# Every refinement event that brings only its window up to date checks that it left no rank's
+# region stale (each region node's u and v against its owner's; a run stops if one is).
+export PERIADAPT_CHECK_REGIONS=1
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 fail=0
 

@@ -1,5 +1,6 @@
 #include "adapt/adaptor.hpp"
 
+#include "parallel/ghost_layer.hpp"
 #include "parallel/held_rows.hpp"
 #include "parallel/mpi_env.hpp"
 
@@ -9,6 +10,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <iterator>
 
 #include "adapt/coarsen.hpp"
@@ -22,7 +24,7 @@
 namespace periadapt {
 
 Adaptor::Adaptor(Model& m, VelocityVerlet& vv, const AdaptSpec& spec)
-    : m_(m), vv_(vv), spec_(spec) {
+    : m_(m), vv_(vv), spec_(spec), check_regions_(std::getenv("PERIADAPT_CHECK_REGIONS") != nullptr) {
   // The energy trigger is the only reader of the multi-rate densities (its check steps).
   vv_.keep_energies_for_checks(spec_.enabled && spec_.energy_fraction ? spec_.check_every : 0);
   // The stretch trigger reads each row's largest stretch from the force passes where they are
@@ -153,9 +155,10 @@ bool Adaptor::window_sync() const {
   // What an event reads of the kinematic state (docs/distributed.md, "Refinement events"): the
   // parents' families and their members' families, sums taken exactly over each rank's own
   // nodes, and for the refresh the rebuilt rows' new families (LPS: and their members' families,
-  // whose dilatations the refresh reads). The options that read the whole model's energy or
-  // state, and the dual pairing's transposed reach, sync everything.
-  return m_.partition.rows_held && vv_.owned_integration() && !m_.formulation.dual_horizon &&
+  // whose dilatations the refresh reads; in the dual pairing a membership new to a rank's
+  // region belongs to a rebuilt row too). The options that read the whole model's energy or
+  // state sync everything.
+  return m_.partition.rows_held && vv_.owned_integration() &&
          spec_.method == NodeGeneration::B && !spec_.conserve_energy && spec_.relax_sweeps == 0 &&
          !spec_.coarsen;
 }
@@ -232,6 +235,12 @@ void Adaptor::refine(const std::vector<std::uint32_t>& parents, std::size_t iden
   // The event's cost includes the refresh (forces of the rebuilt rows, their step rates).
   events_.back().stats.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (window && check_regions_) {
+    const long stale = stale_region_nodes(m_.partition, m_.nodes);
+    if (stale > 0)
+      throw std::logic_error(fmt::format("{} region nodes stale after the refinement event at step {}",
+                                         stale, ev.step));
+  }
 }
 
 bool Adaptor::coarsen_quiet(const std::vector<double>& E, double alpha) {

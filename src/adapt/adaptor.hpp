@@ -73,6 +73,8 @@ class Adaptor {
   std::vector<double> W_;
   std::vector<char> refinable_;
   bool refinable_valid_ = false;
+  // PERIADAPT_CHECK_REGIONS: every window event checks that no rank's region is stale after it.
+  bool check_regions_ = false;
 };
 
 }  // namespace periadapt

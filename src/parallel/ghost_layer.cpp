@@ -1,5 +1,7 @@
 #include "parallel/ghost_layer.hpp"
 
+#include <bit>
+
 #include "parallel/mpi_env.hpp"
 
 namespace periadapt {
@@ -102,6 +104,34 @@ void gather_owned_state(const RowPartition& p, NodeSet& ns,
     for (std::size_t q = 0; q < per_row.size(); ++q) (*per_row[q])[i] = v[4 * D + q];
     ns.sync_current(i);
   }
+}
+
+long stale_region_nodes(const RowPartition& p, const NodeSet& ns) {
+  const int D = ns.dim;
+  const std::size_t width = 2 * static_cast<std::size_t>(D);
+  std::vector<double> values(p.owned.size() * width);
+  for (std::size_t k = 0; k < p.owned.size(); ++k)
+    for (int d = 0; d < D; ++d) {
+      values[k * width + d] = ns.u[d][p.owned[k]];
+      values[k * width + D + d] = ns.v[d][p.owned[k]];
+    }
+  const std::vector<double> all = mpi::all_gather(values);
+  long stale = 0;
+  for (std::size_t k = 0; k < p.all_owned.size(); ++k) {
+    const std::uint32_t i = p.all_owned[k];
+    if (i >= p.in_region.size() || !p.in_region[i]) continue;
+    for (int d = 0; d < D; ++d)
+      if (std::bit_cast<std::uint64_t>(ns.u[d][i]) != std::bit_cast<std::uint64_t>(all[k * width + d]) ||
+          std::bit_cast<std::uint64_t>(ns.v[d][i]) != std::bit_cast<std::uint64_t>(all[k * width + D + d])) {
+        ++stale;
+        break;
+      }
+  }
+  const std::vector<std::uint64_t> counts =
+      mpi::all_gather(std::vector<std::uint64_t>{static_cast<std::uint64_t>(stale)});
+  long total = 0;
+  for (std::uint64_t c : counts) total += static_cast<long>(c);
+  return total;
 }
 
 }  // namespace periadapt

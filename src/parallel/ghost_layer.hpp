@@ -31,4 +31,9 @@ void share_ghost_forces(const RowPartition& p, NodeSet& ns);
 void gather_owned_state(const RowPartition& p, NodeSet& ns,
                         const std::vector<std::vector<double>*>& per_row);
 
+// The nodes of every rank's region whose u or v differ from their owner's, summed over the
+// ranks (collective): zero whenever the regions are current. A diagnostic (an event's window
+// sync must leave none; tests/cli_mpi.sh checks it under PERIADAPT_CHECK_REGIONS).
+long stale_region_nodes(const RowPartition& p, const NodeSet& ns);
+
 }  // namespace periadapt
