@@ -271,7 +271,7 @@ struct ForcesOp {
   }
 };
 template <int D, InfluenceShape S>
-struct EnergyOp {
+struct PmbEnergyOp {
   static int run(const NodeSet& ns, const BondFamilies& bf, double eth, std::vector<double>& W,
                  const std::vector<std::uint32_t>* rows, const BlockPairs* pairs) {
     if (pairs && pairs->active())
@@ -332,7 +332,7 @@ PmbStepStats pmb_forces(NodeSet& nodes, BondFamilies& bonds, InfluenceShape shap
 void pmb_energy_density(const NodeSet& nodes, const BondFamilies& bonds, InfluenceShape shape,
                         std::vector<double>& W, double thermal_strain,
                         const std::vector<std::uint32_t>* rows, const BlockPairs* pairs) {
-  dispatch<EnergyOp>(nodes.dim, shape, nodes, bonds, thermal_strain, W, rows, pairs);
+  dispatch<PmbEnergyOp>(nodes.dim, shape, nodes, bonds, thermal_strain, W, rows, pairs);
 }
 
 void pmb_stiffness_sum(const NodeSet& nodes, const BondFamilies& bonds, InfluenceShape shape,

@@ -9,6 +9,7 @@
 
 #include "model/model.hpp"
 #include "solver/linear_static.hpp"
+#include "studies/convergence_rate.hpp"
 #include "studies/study_csv.hpp"
 
 namespace periadapt {
@@ -19,17 +20,6 @@ bool in_zone(const BarSpec& s, double x, double tol) {
   for (const BarZone& z : s.zones)
     if (x >= z.lo - tol && x <= z.hi + tol) return true;
   return false;
-}
-
-// Least-squares slope of log(err) against log(nodes), negated: the convergence rate.
-double fitted_rate(const std::vector<double>& nodes, const std::vector<double>& err) {
-  const double n = static_cast<double>(nodes.size());
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  for (std::size_t k = 0; k < nodes.size(); ++k) {
-    const double x = std::log(nodes[k]), y = std::log(err[k]);
-    sx += x, sy += y, sxx += x * x, sxy += x * y;
-  }
-  return -(n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
 Model bar_model(const BarSpec& s, std::vector<double>& xs, std::vector<double>& cells) {

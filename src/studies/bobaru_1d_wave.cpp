@@ -13,6 +13,7 @@
 #include "input/deck_builder.hpp"
 #include "setup/build_model.hpp"
 #include "solver/velocity_verlet.hpp"
+#include "studies/convergence_rate.hpp"
 #include "studies/study_csv.hpp"
 
 namespace periadapt {
@@ -92,20 +93,6 @@ WaveArrival bobaru_wave_arrival(int nodes, double delta, bool adaptive, const st
   a.mean_nodes = node_sum / static_cast<double>(ts.steps);
   return a;
 }
-
-namespace {
-
-double fitted_rate(const std::vector<double>& n, const std::vector<double>& e) {
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  const double k = static_cast<double>(n.size());
-  for (std::size_t i = 0; i < n.size(); ++i) {
-    const double x = std::log(n[i]), y = std::log(e[i]);
-    sx += x, sy += y, sxx += x * x, sxy += x * y;
-  }
-  return -(k * sxy - sx * sy) / (k * sxx - sx * sx);
-}
-
-}  // namespace
 
 int run_bobaru_1d_wave_study(const std::string& out_dir) {
   struct Row {
