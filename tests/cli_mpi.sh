@@ -12,7 +12,9 @@
 # and no event that synced only its window left a region node stale;
 # an output failure on rank 0 stops every rank with exit code 4, and a diverging run stops every
 # rank with the serial run's diagnosis.
-# CLI_MPI_RANKS (default "2 3") names other rank counts. Skipped (exit 0 with a note) in a build
+# A case's settings may name its rank counts (ranks=3, ranks=2,3): the variants of a deck that
+# another case runs on both counts run on 3 alone, the uneven partition. CLI_MPI_RANKS (default
+# "2 3") names the rank counts of every case. Skipped (exit 0 with a note) in a build
 # without MPI.
 set -u
 bin="$1"; shift
@@ -100,11 +102,14 @@ PY
 
 while (($#)); do
   name="$1"; deck="$2"; sets="$3"; shift 3
-  args=(--quiet --threads 1)
-  for s in $sets; do args+=(--set "$s"); done
+  args=(--quiet --threads 1); ranks=${CLI_MPI_RANKS:-2 3}
+  for s in $sets; do
+    if [[ $s == ranks=* && -z ${CLI_MPI_RANKS:-} ]]; then ranks=${s#ranks=}; ranks=${ranks//,/ }
+    elif [[ $s != ranks=* ]]; then args+=(--set "$s"); fi
+  done
   "$bin" run "$deck" --out "$tmp/$name-1" "${args[@]}" > "$tmp/$name-1.log" 2>&1 ||
     { echo "FAIL $name: serial run: $(tail -3 "$tmp/$name-1.log")"; fail=1; continue; }
-  for np in ${CLI_MPI_RANKS:-2 3}; do
+  for np in $ranks; do
     out="$tmp/$name-$np"
     if ! mpirun -np $np "$bin" run "$deck" --out "$out" "${args[@]}" > "$out.log" 2>&1; then
       echo "FAIL $name: $np ranks: $(tail -3 "$out.log")"; fail=1; continue
@@ -145,7 +150,7 @@ PY
   # its step) stays within the deck's threshold, at least one event repartitioned, and so the
   # bonds each rank's rows evaluated over the run, a count of the work done, are within it too.
   if [[ $name == rebalance-* ]]; then
-    first=${CLI_MPI_RANKS:-2 3}; first=${first%% *}
+    first=${ranks%% *}
     if r=$(python3 - "$tmp/$name-$first" <<'PY'
 import csv, json, os, sys
 d = sys.argv[1]
