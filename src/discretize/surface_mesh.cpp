@@ -21,7 +21,7 @@
 #include <map>
 #include <vector>
 
-#include <gmsh.h>
+#include "discretize/gmsh_library.hpp"
 
 namespace periadapt {
 
@@ -75,15 +75,6 @@ std::shared_ptr<const SolidSurface> solid_from_soup(const std::string& path,
   return std::make_shared<CgalSolid>(std::move(mesh));
 }
 
-// Gmsh keeps global state: one reader at a time, finalized on every exit.
-struct GmshSession {
-  GmshSession() {
-    gmsh::initialize(0, nullptr, false);
-    gmsh::option::setNumber("General.Terminal", 0);
-  }
-  ~GmshSession() { gmsh::finalize(); }
-};
-
 }  // namespace
 
 std::shared_ptr<const SolidSurface> load_gmsh_solid(const std::string& path, int dim) {
@@ -93,16 +84,16 @@ std::shared_ptr<const SolidSurface> load_gmsh_solid(const std::string& path, int
   // Linear triangles (2D) or tetrahedra (3D); a geometry without a mesh is meshed first.
   const int type = dim == 2 ? 2 : 4, corners = dim == 2 ? 3 : 4;
   std::vector<std::size_t> element_tags, element_nodes, node_tags;
-  std::vector<double> coords, params;
+  std::vector<double> coords;
   try {
-    GmshSession session;
-    gmsh::open(path);
-    gmsh::model::mesh::getElementsByType(type, element_tags, element_nodes);
+    GmshSession gmsh;
+    gmsh.open(path);
+    gmsh.elements_by_type(type, element_tags, element_nodes);
     if (element_tags.empty()) {
-      gmsh::model::mesh::generate(dim);
-      gmsh::model::mesh::getElementsByType(type, element_tags, element_nodes);
+      gmsh.generate(dim);
+      gmsh.elements_by_type(type, element_tags, element_nodes);
     }
-    gmsh::model::mesh::getNodes(node_tags, coords, params, -1, -1, true, false);
+    gmsh.nodes(node_tags, coords);
   } catch (const std::exception& e) {
     throw SurfaceMeshError(path + ": Gmsh could not read it: " + e.what());
   } catch (...) {
