@@ -24,9 +24,12 @@ band='adapt={max_level: 1, initial_refinement: [{region: {box: {min: [0.0, -0.01
 band_ghost='adapt={max_level: 1, ghost_correction: true, initial_refinement: [{region: {box: {min: [0.0, -0.012], max: [0.1, 0.012]}}, level: 1}]}'
 # s0 of PMB plane strain from G0 = 6 J/m^2 at delta = 4 mm (thesis Eq. 2.15): sqrt(5 pi G0 / (12 E delta)).
 s0=$(python3 -c 'import math; print(repr(math.sqrt(5 * math.pi * 6.0 / (12 * 72e9 * 4e-3))))')
+# The runs end at 260 us, where the remote stress is 1.22 x LEFM: a run that has not failed by
+# then is outside the LEFM bound anyway (the deck's 350 us show the branching that follows).
 run() {  # name, then --set arguments
   local name=$1; shift
-  "$bin" run "$deck" --quiet --out "$out/$name" "$@" > "$out/$name.log" 2>&1 \
+  "$bin" run "$deck" --quiet --out "$out/$name" --set solver.end_time=2.6e-4 \
+    --set output.png_times=[2.6e-4] "$@" > "$out/$name.log" 2>&1 \
     || { cat "$out/$name.log"; echo "FAIL: run $name"; exit 1; }
 }
 run uniform
