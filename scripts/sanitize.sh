@@ -10,8 +10,8 @@
 # an interface-horizon patch (every adaptive test runs the correction).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-# Sources compiled in unity batches and line-table debug info (enough for the reports' stack
-# traces): the build took 10.2 min here, 6.9 min so (CI's largest single step).
+# Unity batches and line-table debug info (enough for the reports' stack traces) keep this
+# build, CI's largest single step, short.
 cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DPERIADAPT_NATIVE=OFF -DPERIADAPT_BUILD_BENCH=OFF \
   -DCMAKE_UNITY_BUILD=ON -DCMAKE_UNITY_BUILD_BATCH_SIZE=8 \
   -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1 -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined" \

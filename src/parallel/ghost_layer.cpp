@@ -127,11 +127,8 @@ long stale_region_nodes(const RowPartition& p, const NodeSet& ns) {
         break;
       }
   }
-  const std::vector<std::uint64_t> counts =
-      mpi::all_gather(std::vector<std::uint64_t>{static_cast<std::uint64_t>(stale)});
-  long total = 0;
-  for (std::uint64_t c : counts) total += static_cast<long>(c);
-  return total;
+  // A count is exact in a double.
+  return static_cast<long>(mpi::sum_real(static_cast<double>(stale)));
 }
 
 }  // namespace periadapt
