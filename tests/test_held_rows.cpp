@@ -119,8 +119,8 @@ TEST(HeldRows, RowsGrownByFamiliesAreTheFamiliesMembers) {
 
 // After a refinement event the rows a rank has are current, and their bond lists give the same
 // two layers as the search: on a plate refined in two zones (the refined parents inactive, rows
-// of two sizes), from rows on both levels and a refined parent, with every other row listed and
-// with none.
+// of two sizes), from rows on both levels and a refined parent, with every row listed and with
+// every other one, against no row listed (the search alone).
 TEST(HeldRows, ListedRowsGrowAsTheSearchDoes) {
   Model m = build_model(plate_deck(24, 16).build("held rows, refined plate"));
   AdaptSpec spec;
