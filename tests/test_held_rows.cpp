@@ -71,7 +71,7 @@ TEST(HeldRows, KeptRowsAreTheWholeRowsUnderTheBondNames) {
   for (std::uint32_t i = 0; i < m.nodes.size(); ++i)
     if (i % 3 != 1) keep.push_back(i);
   RowPartition p;
-  hold_bond_rows(p, m.bonds, keep);
+  hold_bond_rows(p, m.bonds, keep, m.nodes);
   const BondFamilies& h = m.bonds;
   EXPECT_TRUE(p.rows_held);
   EXPECT_EQ(whole_bond_count(p, h), whole.num_bonds());
@@ -272,7 +272,7 @@ TEST(HeldRows, CheckpointPiecesRestoreWholeAndHeldRows) {
       if (pick(i)) m.partition.owned.push_back(i);
       m.partition.owner.push_back(static_cast<int>(i % 2));
     }
-    hold_bond_rows(m.partition, m.bonds, m.partition.owned);
+    hold_bond_rows(m.partition, m.bonds, m.partition.owned, m.nodes);
     return m;
   };
   const Model even = held([](std::uint32_t i) { return i % 2 == 0; });
@@ -316,7 +316,7 @@ TEST(HeldRows, CheckpointPiecesRestoreWholeAndHeldRows) {
   third.bonds.enable_state();
   std::vector<std::uint32_t> keep;
   for (std::uint32_t i = 0; i < n; i += 3) keep.push_back(i);
-  hold_bond_rows(third.partition, third.bonds, keep);
+  hold_bond_rows(third.partition, third.bonds, keep, third.nodes);
   ArchiveReader r3(w.bytes(), "test");
   restore_model_state(r3, third, read);
   for (std::uint32_t i : keep)
@@ -332,7 +332,7 @@ TEST(HeldRows, CheckpointPiecesRestoreWholeAndHeldRows) {
   // A rank holding the even rows alone reads their piece alone.
   Model again = plate();
   again.bonds.enable_state();
-  hold_bond_rows(again.partition, again.bonds, even.partition.owned);
+  hold_bond_rows(again.partition, again.bonds, even.partition.owned, again.nodes);
   reads = 0;
   ArchiveReader r2(w.bytes(), "test");
   restore_model_state(r2, again, read);
@@ -345,7 +345,7 @@ TEST(HeldRows, CheckpointPiecesRestoreWholeAndHeldRows) {
   save_model_state(ws, base);
   Model from_serial = plate();
   from_serial.bonds.enable_state();
-  hold_bond_rows(from_serial.partition, from_serial.bonds, keep);
+  hold_bond_rows(from_serial.partition, from_serial.bonds, keep, from_serial.nodes);
   ArchiveReader rs(ws.bytes(), "test");
   restore_model_state(rs, from_serial);
   EXPECT_EQ(from_serial.bonds.beta, third.bonds.beta);

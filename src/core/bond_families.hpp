@@ -37,6 +37,15 @@ struct BondFamilies {
   std::vector<std::uint64_t> t_offsets;
   std::vector<std::uint32_t> t_owner;
   std::vector<std::uint64_t> t_bond;
+  // Plain LPS pairing on nodes of several horizons: a pair's force is the gradient of both ends'
+  // energies, each weighing the pair with its own row's quadrature factor. Per node, where its
+  // row's factors for the far ends sit in reverse_beta (kNoReverse: the same as its own, the
+  // rows away from level interfaces); there, per bond slot of the row, the factor of the same
+  // pair in the far end's row (0 where that row lacks it). Made when rows are built or moved
+  // (index_pairs), after any correction of the factors; empty otherwise.
+  static constexpr std::uint64_t kNoReverse = ~std::uint64_t{0};
+  std::vector<std::uint64_t> reverse_at;
+  std::vector<float> reverse_beta;
   // Dual-horizon PMB scratch: each membership's force factor from its owner's pass, gathered by
   // the other end (8 B per bond slot; empty for other forms).
   std::vector<double> dual_force;

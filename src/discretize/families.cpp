@@ -310,6 +310,8 @@ void rebuild_rows(BondFamilies& fam, const NodeSet& nodes, const QuadratureSpec&
   fam.t_offsets.clear();
   fam.t_owner.clear();
   fam.t_bond.clear();
+  fam.reverse_at.clear();
+  fam.reverse_beta.clear();
   std::vector<std::uint32_t> list;
   for (std::size_t i = 0; i < n; ++i)
     if (i < rows.size() && rows[i]) list.push_back(static_cast<std::uint32_t>(i));
@@ -416,6 +418,66 @@ void build_transpose(BondFamilies& bf) {
       bf.t_owner[q] = static_cast<std::uint32_t>(i);
       bf.t_bond[q] = k;
     }
+}
+
+void build_reverse(BondFamilies& bf, const NodeSet& ns) {
+  const std::size_t n = bf.num_nodes();
+  // A row whose far ends all share its horizon and cell size has its own factors both ways (the
+  // rules and corrections are symmetric then): only the others are searched, by bisection of
+  // the far end's row (rows are sorted by neighbour id) for the near end.
+  auto candidate = [&](std::size_t i) {
+    for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {
+      const std::uint32_t j = bf.neighbor[k];
+      if (ns.horizon[j] != ns.horizon[i] || ns.spacing[j] != ns.spacing[i]) return true;
+    }
+    return false;
+  };
+  std::vector<std::vector<float>> far(n);
+#pragma omp parallel for schedule(dynamic, 256)
+  for (std::size_t i = 0; i < n; ++i) {
+    if (bf.end(i) == bf.begin(i) || !candidate(i)) continue;
+    std::vector<float> f(bf.end(i) - bf.begin(i), 0.0f);
+    bool mixed = false;
+    for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {
+      const std::uint32_t j = bf.neighbor[k];
+      const auto first = bf.neighbor.begin() + static_cast<long>(bf.begin(j));
+      const auto last = bf.neighbor.begin() + static_cast<long>(bf.end(j));
+      const auto at = std::lower_bound(first, last, static_cast<std::uint32_t>(i));
+      float& v = f[k - bf.begin(i)];
+      if (at != last && *at == i) v = std::abs(bf.beta[static_cast<std::size_t>(at - bf.neighbor.begin())]);
+      mixed = mixed || v != std::abs(bf.beta[k]);
+    }
+    if (mixed) far[i] = std::move(f);
+  }
+  bf.reverse_at.assign(n, BondFamilies::kNoReverse);
+  std::uint64_t total = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    if (!far[i].empty()) {
+      bf.reverse_at[i] = total;
+      total += far[i].size();
+    }
+  bf.reverse_beta.resize(total);
+#pragma omp parallel for schedule(dynamic, 256)
+  for (std::size_t i = 0; i < n; ++i)
+    if (!far[i].empty())
+      std::copy(far[i].begin(), far[i].end(), bf.reverse_beta.begin() + static_cast<long>(bf.reverse_at[i]));
+}
+
+void index_pairs(BondFamilies& bf, const NodeSet& ns, bool dual_horizon, bool state_based) {
+  bf.reverse_at.clear();
+  bf.reverse_beta.clear();
+  if (dual_horizon) {
+    build_transpose(bf);
+    return;
+  }
+  if (!state_based) return;
+  double lo = INFINITY, hi = -INFINITY;
+  for (std::size_t i = 0; i < ns.size(); ++i)
+    if (ns.flags[i] & kActive) {
+      lo = std::min(lo, ns.horizon[i]);
+      hi = std::max(hi, ns.horizon[i]);
+    }
+  if (lo < hi) build_reverse(bf, ns);
 }
 
 void mark_unbreakable_bonds(const NodeSet& ns, BondFamilies& bf, const std::vector<char>* rows) {

@@ -69,6 +69,16 @@ std::vector<std::uint32_t> active_nodes_near(const NodeSet& nodes,
 // Builds the transpose of the families (t_offsets, t_owner, t_bond), sorted by owner.
 void build_transpose(BondFamilies& bonds);
 
+// Builds reverse_at and reverse_beta: each row's far-end quadrature factors, kept for the rows
+// where one differs from the row's own (BondFamilies). Only rows with a far end of another
+// horizon or cell size are searched: between equal cells and horizons the factors agree.
+void build_reverse(BondFamilies& bonds, const NodeSet& nodes);
+
+// What a force form reads of the other ends' rows, made again after rows were built or moved
+// and their factors corrected: the dual-horizon transpose, or the plain LPS pairing's far-end
+// factors where the active nodes have more than one horizon.
+void index_pairs(BondFamilies& bonds, const NodeSet& nodes, bool dual_horizon, bool state_based);
+
 // Bonds with an end on a no-fail node can never break (flag carried by the bond's sign).
 // `rows` (optional): only the rows of flagged nodes (the others are known to be up to date).
 void mark_unbreakable_bonds(const NodeSet& nodes, BondFamilies& bonds,

@@ -102,8 +102,10 @@ void dilatation(const NodeSet& ns, const BondFamilies& bf, const LpsConstants& c
   }
 }
 
-// B: several materials: stretches compared as s * isf by the far end's block.
-template <int D, InfluenceShape S, bool E, bool B>
+// B: several materials: stretches compared as s * isf by the far end's block. R: the far end's
+// state weighs the pair with its own row's quadrature factor (bf.reverse_beta, for the rows at
+// level interfaces); without R both ends' factors are the same.
+template <int D, InfluenceShape S, bool E, bool B, bool R>
 std::size_t forces(NodeSet& ns, BondFamilies& bf, const LpsConstants& c, bool allow_breaking,
                    LpsScratch& sc, std::vector<std::uint64_t>* log, double* W, const PdroSpec* pdro,
                    const std::vector<std::uint32_t>* rows,
@@ -129,6 +131,11 @@ std::size_t forces(NodeSet& ns, BondFamilies& bf, const LpsConstants& c, bool al
     const double s0 = (allow_breaking && !(ns.flags[i] & kNoFail)) ? ns.critical_stretch[i] : INFINITY;
     const std::uint64_t kb = bf.begin(i), ke = bf.end(i);
     const double* isf = B ? sc.block_inv_stretch.data() + blk[i] * nblocks : nullptr;
+    // Far-end factors: a row at a level interface reads its own (far), the others their own
+    // factor both ways (bji is then bp: the magnitude of an intact bond's factor).
+    const float* far = (R && bf.reverse_at[i] != BondFamilies::kNoReverse)
+                           ? bf.reverse_beta.data() + bf.reverse_at[i] - kb
+                           : beta;
     double a0 = 0, a1 = 0, a2 = 0, wdev = 0, smax = -INFINITY;
     // Fast pass: t_ij + t_ji of intact bonds and the largest stretch; nothing written per bond.
 #pragma omp simd reduction(+ : a0, a1, a2, wdev) reduction(max : smax)
@@ -148,8 +155,10 @@ std::size_t forces(NodeSet& ns, BondFamilies& bf, const LpsConstants& c, bool al
         wj *= omega<S>(x * pk[j + 3]);
       }
       const double edi = e - Ci * x;
-      const double t = wi * (Ai * x + Bi * edi) + wj * (pk[j] * x + pk[j + 1] * (e - pk[j + 2] * x));
-      const double fr = t * bp * yp[j + 3] / r;
+      const double bji = R ? std::abs(static_cast<double>(far[k])) * static_cast<double>(bp > 0.0) : bp;
+      const double t = wi * (Ai * x + Bi * edi) * bp +
+                       wj * (pk[j] * x + pk[j + 1] * (e - pk[j + 2] * x)) * bji;
+      const double fr = t * yp[j + 3] / r;
       a0 += fr * d0;
       a1 += fr * d1;
       a2 += fr * d2;
@@ -189,8 +198,10 @@ std::size_t forces(NodeSet& ns, BondFamilies& bf, const LpsConstants& c, bool al
           wj *= omega<S>(x * pk[j + 3]);
         }
         const double edi = e - Ci * x;
-        const double t = wi * (Ai * x + Bi * edi) + wj * (pk[j] * x + pk[j + 1] * (e - pk[j + 2] * x));
-        const double fr = t * V / r;
+        const double bji = R ? std::abs(static_cast<double>(far[k])) : b;
+        const double t = wi * (Ai * x + Bi * edi) * b +
+                         wj * (pk[j] * x + pk[j + 1] * (e - pk[j + 2] * x)) * bji;
+        const double fr = t * yp[j + 3] / r;
         a0 += fr * d0;
         a1 += fr * d1;
         a2 += fr * d2;
@@ -213,15 +224,20 @@ std::size_t forces_shape(InfluenceShape s, NodeSet& ns, BondFamilies& bf, const 
                          bool brk, LpsScratch& sc, std::vector<std::uint64_t>* log, double* W,
                          const PdroSpec* pdro, const std::vector<std::uint32_t>* rows,
                          const std::vector<std::uint32_t>* dr) {
-  switch (s) {
-    case InfluenceShape::Constant:
-      return forces<D, InfluenceShape::Constant, E, B>(ns, bf, c, brk, sc, log, W, pdro, rows, dr);
-    case InfluenceShape::Triangular:
-      return forces<D, InfluenceShape::Triangular, E, B>(ns, bf, c, brk, sc, log, W, pdro, rows, dr);
-    default:
-      return forces<D, InfluenceShape::InvertedTriangular, E, B>(ns, bf, c, brk, sc, log, W, pdro,
-                                                                 rows, dr);
-  }
+  auto go = [&]<bool R>() {
+    switch (s) {
+      case InfluenceShape::Constant:
+        return forces<D, InfluenceShape::Constant, E, B, R>(ns, bf, c, brk, sc, log, W, pdro, rows,
+                                                            dr);
+      case InfluenceShape::Triangular:
+        return forces<D, InfluenceShape::Triangular, E, B, R>(ns, bf, c, brk, sc, log, W, pdro,
+                                                              rows, dr);
+      default:
+        return forces<D, InfluenceShape::InvertedTriangular, E, B, R>(ns, bf, c, brk, sc, log, W,
+                                                                      pdro, rows, dr);
+    }
+  };
+  return bf.reverse_at.empty() ? go.template operator()<false>() : go.template operator()<true>();
 }
 
 template <bool E>

@@ -4,14 +4,17 @@
 //   m_i     = sum_j w x^2 beta V_j                                 (weighted volume, Eq. 2.9)
 //   theta_i = (D / m_i) sum_j w x e beta V_j,  e = |Y| - x           (dilatation, D = 2 or 3)
 //   t_ij    = (D kappa theta_i / m_i) w x + (alpha / m_i) w (e - theta_i x / D)
-//   f_i     = sum_j (t_ij + t_ji) beta V_j Y/|Y|
-// with every sum over the bonds whose far end's family holds the near end too. On a uniform grid
-// that is every bond. On a refined one a coarse family reaches fine nodes whose horizons do not
-// reach back: such a bond would act on one end only (t_ij with no reaction on j, or a t_ji of a
-// state that does not contain the bond) and feed energy in without bound. Over the mutual bonds
-// the pair force appears in both rows, so momentum is conserved and the forces are the gradient
-// of sum V_i W_i; LPS normalizes each state by its weighted volume, so a coarse node that loses
-// a few far bonds keeps the calibrated response.
+//   f_i     = sum_j (t_ij beta_ij + t_ji beta_ji) V_j Y/|Y|
+// with every sum over the bonds whose far end's family holds the near end too, and beta_ij the
+// quadrature factor of j in i's family. On a uniform grid that is every bond, and beta_ij =
+// beta_ji. On a refined one a coarse family reaches fine nodes whose horizons do not reach back:
+// such a bond would act on one end only (t_ij with no reaction on j, or a t_ji of a state that
+// does not contain the bond) and feed energy in without bound. Over the mutual bonds the pair
+// force appears in both rows, and with each end's own factor (a fine horizon cuts a coarse cell
+// that the coarse horizon holds whole) it is the gradient of sum V_i W_i: momentum and energy
+// are conserved (BondFamilies::reverse_beta holds the far ends' factors at level interfaces).
+// LPS normalizes each state by its weighted volume, so a coarse node that loses a few far bonds
+// keeps the calibrated response.
 // with 3D: kappa = K, alpha = 15 mu; 2D: kappa = the in-plane bulk modulus (plane strain
 // E / (2 (1 + nu)(1 - 2 nu)), plane stress E / (2 (1 - nu))), alpha = 8 mu. With this 2D
 // dilatation the deviatoric part is orthogonal to x, so the force state needs no extra term (the

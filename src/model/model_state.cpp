@@ -219,7 +219,7 @@ void restore_bonds(ArchiveReader& r, Model& m, const PieceReader& read_piece) {
       std::vector<std::uint64_t> lengths(n + 1, 0);
       for (std::size_t i = 0; i < n; ++i) lengths[i + 1] = lengths[i] + whole.end(i) - whole.begin(i);
       const std::vector<std::uint32_t> keep = split_restored_rows(m, lengths);
-      hold_bond_rows(m.partition, whole, keep);
+      hold_bond_rows(m.partition, whole, keep, m.nodes);
       m.bonds = std::move(whole);
       m.partition.whole_capacity = room;
       return;
@@ -389,6 +389,8 @@ void restore_model_state(ArchiveReader& r, Model& m, const PieceReader& read_pie
   if (!consistent) throw ArchiveError("the checkpoint's node arrays differ in length (corrupt)");
   r.tag("BOND");
   restore_bonds(r, m, read_piece);
+  // The plain LPS pairing's far-end factors are not archived: made from the rows restored.
+  if (!m.formulation.dual_horizon) index_pairs(m.bonds, m.nodes, false, m.formulation.state_based());
   r.tag("LOAD");
   if (r.get<std::uint64_t>() != m.loads.size())
     throw ArchiveError("the checkpoint's number of loads differs from the deck's");

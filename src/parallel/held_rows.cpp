@@ -60,17 +60,19 @@ void keep_rows(std::vector<T>& a, const BondFamilies& bf, const std::vector<std:
 
 // The end of every way of holding rows: the partition stays the one these rows came from
 // (refresh_partition compares the size), and a dual-horizon transpose, which names bond slots,
-// is made again over the rows where they now lie.
-void finish_hold(RowPartition& p, BondFamilies& bf, std::size_t rows) {
+// and the plain LPS pairing's far-end factors are made again over the rows now held.
+void finish_hold(RowPartition& p, BondFamilies& bf, std::size_t rows, const NodeSet& ns) {
   p.rows_held = true;
   p.held_row_count = rows;
   p.bonds = bf.neighbor.size();
   bf.dual_force.clear();
   if (!bf.t_offsets.empty()) build_transpose(bf);
+  if (!bf.reverse_at.empty()) build_reverse(bf, ns);
 }
 
 // Keeps the rows `keep` (ascending, all present here) in contiguous arrays.
-void compact_to(RowPartition& p, BondFamilies& bf, const std::vector<std::uint32_t>& keep) {
+void compact_to(RowPartition& p, BondFamilies& bf, const std::vector<std::uint32_t>& keep,
+                const NodeSet& ns) {
   const std::size_t n = bf.num_nodes();
   std::uint64_t kept = 0;
   for (std::uint32_t i : keep) kept += bf.end(i) - bf.begin(i);
@@ -89,13 +91,14 @@ void compact_to(RowPartition& p, BondFamilies& bf, const std::vector<std::uint32
   }
   bf.offsets = std::move(offsets);
   bf.close_contiguous();
-  finish_hold(p, bf, keep.size());
+  finish_hold(p, bf, keep.size(), ns);
 }
 
 // Keeps the rows `keep` (ascending, all present here) where they are: each slides down over the
 // rows let go, in the order of their places, so no array is copied whole (an event's rehold would
 // otherwise hold two copies of a rank's rows). Rows then lie in no particular order (bf.ends).
-void compact_in_place(RowPartition& p, BondFamilies& bf, const std::vector<std::uint32_t>& keep) {
+void compact_in_place(RowPartition& p, BondFamilies& bf, const std::vector<std::uint32_t>& keep,
+                      const NodeSet& ns) {
   const std::size_t n = bf.num_nodes();
   if (bf.ends.empty()) bf.ends.assign(bf.offsets.begin() + 1, bf.offsets.end());
   std::vector<std::uint32_t> order(keep);
@@ -131,7 +134,7 @@ void compact_in_place(RowPartition& p, BondFamilies& bf, const std::vector<std::
   fit(bf.inv_length);
   fit(bf.beta);
   if (bf.keeps_state) fit(bf.state);
-  finish_hold(p, bf, keep.size());
+  finish_hold(p, bf, keep.size(), ns);
 }
 
 // Keeps the rows `keep` (ascending, all present here) and lets the others go: their entries
@@ -139,7 +142,8 @@ void compact_in_place(RowPartition& p, BondFamilies& bf, const std::vector<std::
 // place once the slack passes an eighth of the kept bonds, so that most events cost the rows
 // they touched, not a pass over every bond (and the event's own search, which compacts into
 // fresh arrays past a quarter, seldom has to).
-void release_rows(RowPartition& p, BondFamilies& bf, const std::vector<std::uint32_t>& keep) {
+void release_rows(RowPartition& p, BondFamilies& bf, const std::vector<std::uint32_t>& keep,
+                  const NodeSet& ns) {
   const std::size_t n = bf.num_nodes();
   if (bf.ends.empty()) bf.ends.assign(bf.offsets.begin() + 1, bf.offsets.end());
   std::vector<char> kept(n, 0);
@@ -154,7 +158,7 @@ void release_rows(RowPartition& p, BondFamilies& bf, const std::vector<std::uint
     bf.offsets[i] = bf.ends[i] = 0;
   }
   if (end - bf.live > bf.live / 8) {
-    compact_in_place(p, bf, keep);
+    compact_in_place(p, bf, keep, ns);
     return;
   }
   bf.neighbor.resize(end);
@@ -163,7 +167,7 @@ void release_rows(RowPartition& p, BondFamilies& bf, const std::vector<std::uint
   if (bf.keeps_state) bf.state.resize(end);
   bf.offsets[n] = end;
   p.held = std::move(kept);
-  finish_hold(p, bf, keep.size());
+  finish_hold(p, bf, keep.size(), ns);
 }
 
 // Whole row lengths as row begins (a prefix sum).
@@ -254,11 +258,12 @@ class RowReader {
 
 }  // namespace
 
-void hold_bond_rows(RowPartition& p, BondFamilies& bf, const std::vector<std::uint32_t>& keep) {
+void hold_bond_rows(RowPartition& p, BondFamilies& bf, const std::vector<std::uint32_t>& keep,
+                    const NodeSet& ns) {
   std::vector<std::uint64_t> whole =
       row_begins(bf.num_nodes(), [&](std::size_t i) { return bf.end(i) - bf.begin(i); });
   p.whole_capacity = std::max<std::uint64_t>(whole.back(), bf.neighbor.capacity());
-  compact_to(p, bf, keep);
+  compact_to(p, bf, keep, ns);
   p.whole_offsets = std::move(whole);
 }
 
@@ -331,9 +336,9 @@ void rehold_rows(RowPartition& p, const NodeSet& ns, BondFamilies& bf, const Qua
   // From whole arrays (the first pass) a fresh copy of the kept rows frees the rest; held arrays
   // let the others' rows go where they are.
   if (p.rows_held)
-    release_rows(p, bf, kept);
+    release_rows(p, bf, kept, ns);
   else
-    compact_to(p, bf, kept);
+    compact_to(p, bf, kept, ns);
   p.whole_offsets = std::move(whole);
 }
 

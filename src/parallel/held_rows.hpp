@@ -27,8 +27,9 @@ HeldReach held_reach(bool state_based, bool dual_horizon);
 
 // Keeps the rows `keep` (ascending) of whole arrays and empties the others, in contiguous
 // arrays; records the whole model's row begins in `p` (rows_held). A dual-horizon transpose is
-// made again over the kept rows.
-void hold_bond_rows(RowPartition& p, BondFamilies& bf, const std::vector<std::uint32_t>& keep);
+// made again over the kept rows (and the plain LPS pairing's far-end factors, which read `nodes`).
+void hold_bond_rows(RowPartition& p, BondFamilies& bf, const std::vector<std::uint32_t>& keep,
+                    const NodeSet& nodes);
 
 // Refinement events with held rows (p.refining). An event reads and rebuilds the rows near its
 // parents: `rows` (the same list on every rank) come from their owners to every rank that lacks

@@ -181,7 +181,7 @@ Model build_model(const Deck& dk, const FamilyBuild& families) {
   for (std::size_t r = 0; r < dk.no_fail.size(); ++r)
     for (std::uint32_t i : select(ns, dk.no_fail[r], tol)) ns.flags[i] |= kNoFail;
   mark_unbreakable_bonds(ns, m.bonds);
-  if (m.formulation.dual_horizon) build_transpose(m.bonds);
+  index_pairs(m.bonds, ns, m.formulation.dual_horizon, m.formulation.state_based());
 
   for (std::size_t r = 0; r < dk.output.regions.size(); ++r)
     if (select(ns, dk.output.regions[r].region, tol).empty())
