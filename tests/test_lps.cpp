@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "adapt/refine.hpp"
 #include "analysis/energy.hpp"
 #include "input/deck_builder.hpp"
 #include "setup/build_model.hpp"
@@ -351,6 +352,61 @@ TEST(Lps, GaussianPulseThroughARefinedHalfKeepsItsEnergyBounded) {
   EXPECT_LT(dual.worst_drift, 0.005);
   RecordProperty("energy_drift_plain", std::to_string(plain.worst_drift));
   RecordProperty("energy_drift_dual", std::to_string(dual.worst_drift));
+}
+
+TEST(Lps, EveryRowReadsItsFarEndsOwnQuadratureFactorsAfterEvents) {
+  // After refinement events (two levels, zones next to each other), every pair of an LPS row
+  // must weigh the far end's state with the factor the far end's row holds for it, 0 where that
+  // row lacks the pair. Events redo only the rows they touch (index_pairs); this checks every
+  // row against a search of the far end's row, for a rule that cuts cells at the horizon
+  // (PA-PDLAMMPS), one that covers partial cells (subcell) and a surface correction on top.
+  for (const char* variant : {"pa_pdlammps", "subcell", "energy"}) {
+    DeckBuilder d;
+    d.set("model.dimension", 2)
+        .set("model.plane", "stress")
+        .set("model.formulation", "lps")
+        .set("material.youngs_modulus", 1.0e9)
+        .set("material.poisson_ratio", 0.25)
+        .set("material.density", 1000.0)
+        .set("discretization.spacing", 0.001)
+        .set("discretization.quadrature", std::string(variant) == "subcell" ? "subcell" : "pa_pdlammps")
+        .set("discretization.surface_correction", std::string(variant) == "energy" ? "energy" : "false")
+        .set("discretization.body.box.min", std::vector<double>{0.0, 0.0})
+        .set("discretization.body.box.max", std::vector<double>{0.024, 0.016})
+        .set("damage.enabled", false)
+        .set("solver.steps", 1);
+    Model m = build_model(d.build("plate"));
+    EXPECT_TRUE(m.bonds.reverse_at.empty());  // one horizon: nothing to read
+    AdaptSpec spec;
+    spec.enabled = true;
+    spec.max_level = 2;
+    refine_nodes(m, test::active_near(m.nodes, 0.006, 0.008, 0.003, 0), spec);
+    refine_nodes(m, test::active_near(m.nodes, 0.006, 0.008, 0.0012, 1), spec);
+    refine_nodes(m, test::active_near(m.nodes, 0.012, 0.008, 0.002, 0), spec);
+    const BondFamilies& bf = m.bonds;
+    ASSERT_FALSE(bf.reverse_at.empty());
+    std::size_t rows = 0, checked = 0, wrong = 0, differing = 0;
+    for (std::size_t i = 0; i < m.nodes.size(); ++i) {
+      if (!(m.nodes.flags[i] & kActive)) continue;
+      rows += bf.reverse_at[i] != BondFamilies::kNoReverse;
+      for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {
+        const std::uint32_t j = bf.neighbor[k];
+        double expected = 0.0;
+        for (std::uint64_t q = bf.begin(j); q < bf.end(j); ++q)
+          if (bf.neighbor[q] == i) expected = std::abs(static_cast<double>(bf.beta[q]));
+        const double used = bf.reverse_at[i] != BondFamilies::kNoReverse
+                                ? bf.reverse_beta[bf.reverse_at[i] + (k - bf.begin(i))]
+                                : std::abs(static_cast<double>(bf.beta[k]));
+        ++checked;
+        wrong += used != expected;
+        differing += expected != std::abs(static_cast<double>(bf.beta[k]));
+      }
+    }
+    std::printf("%s: %zu rows read far factors, %zu of %zu pairs differ by end, %zu wrong\n",
+                variant, rows, differing, checked, wrong);
+    EXPECT_GT(differing, 100u);
+    EXPECT_EQ(wrong, 0u);
+  }
 }
 
 TEST(Lps, PulseThroughALevelInterfaceIn3DKeepsItsEnergy) {

@@ -235,8 +235,8 @@ std::vector<std::uint32_t> rebuild_families(Model& m, const CrackMemory& mem,
   // Copied rows keep their marks and weights: their neighbours neither changed volume nor flags
   // (a changed node puts every row that reaches it into the window).
   mark_unbreakable_bonds(ns, bf, &rebuild);
-  index_pairs(bf, ns, m.formulation.dual_horizon, m.formulation.state_based());
   for (std::uint32_t i : recorrected) rebuild[i] = 1;
+  index_pairs(bf, ns, m.formulation.dual_horizon, m.formulation.state_based(), &rebuild);
   update_damage_weights(ns, bf, &rebuild);
   std::vector<std::uint32_t> rows;
   for (std::size_t i = 0; i < ns.size(); ++i)

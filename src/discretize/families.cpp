@@ -310,8 +310,8 @@ void rebuild_rows(BondFamilies& fam, const NodeSet& nodes, const QuadratureSpec&
   fam.t_offsets.clear();
   fam.t_owner.clear();
   fam.t_bond.clear();
-  fam.reverse_at.clear();
-  fam.reverse_beta.clear();
+  // The far-end factors stay: index_pairs redoes the rows this changes and keeps the others'
+  // (stored by place in their row, which a move keeps).
   std::vector<std::uint32_t> list;
   for (std::size_t i = 0; i < n; ++i)
     if (i < rows.size() && rows[i]) list.push_back(static_cast<std::uint32_t>(i));
@@ -383,6 +383,8 @@ void rebuild_rows(BondFamilies& fam, const NodeSet& nodes, const QuadratureSpec&
         std::copy(fam.state.begin() + b, fam.state.begin() + e, c.state.begin() + o);
     }
     c.close_contiguous();
+    c.reverse_at = std::move(fam.reverse_at);
+    c.reverse_beta = std::move(fam.reverse_beta);
     fam = std::move(c);
     return;
   }
@@ -420,7 +422,7 @@ void build_transpose(BondFamilies& bf) {
     }
 }
 
-void build_reverse(BondFamilies& bf, const NodeSet& ns) {
+void build_reverse(BondFamilies& bf, const NodeSet& ns, const std::vector<char>* redo) {
   const std::size_t n = bf.num_nodes();
   // A row whose far ends all share its horizon and cell size has its own factors both ways (the
   // rules and corrections are symmetric then): only the others are searched, by bisection of
@@ -432,10 +434,20 @@ void build_reverse(BondFamilies& bf, const NodeSet& ns) {
     }
     return false;
   };
+  // Rows not to redo keep the factors they had; one that had none is checked again (its row may
+  // have arrived from another rank since).
+  const std::size_t n_old = redo ? bf.reverse_at.size() : 0;
   std::vector<std::vector<float>> far(n);
 #pragma omp parallel for schedule(dynamic, 256)
   for (std::size_t i = 0; i < n; ++i) {
-    if (bf.end(i) == bf.begin(i) || !candidate(i)) continue;
+    if (bf.end(i) == bf.begin(i)) continue;
+    if (i < n_old && i < redo->size() && !(*redo)[i] &&
+        bf.reverse_at[i] != BondFamilies::kNoReverse) {
+      const auto from = bf.reverse_beta.begin() + static_cast<long>(bf.reverse_at[i]);
+      far[i].assign(from, from + static_cast<long>(bf.end(i) - bf.begin(i)));
+      continue;
+    }
+    if (!candidate(i)) continue;
     std::vector<float> f(bf.end(i) - bf.begin(i), 0.0f);
     bool mixed = false;
     for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {
@@ -463,21 +475,41 @@ void build_reverse(BondFamilies& bf, const NodeSet& ns) {
       std::copy(far[i].begin(), far[i].end(), bf.reverse_beta.begin() + static_cast<long>(bf.reverse_at[i]));
 }
 
-void index_pairs(BondFamilies& bf, const NodeSet& ns, bool dual_horizon, bool state_based) {
-  bf.reverse_at.clear();
-  bf.reverse_beta.clear();
+void index_pairs(BondFamilies& bf, const NodeSet& ns, bool dual_horizon, bool state_based,
+                 const std::vector<char>* changed) {
   if (dual_horizon) {
+    bf.reverse_at.clear();
+    bf.reverse_beta.clear();
     build_transpose(bf);
     return;
   }
-  if (!state_based) return;
   double lo = INFINITY, hi = -INFINITY;
-  for (std::size_t i = 0; i < ns.size(); ++i)
-    if (ns.flags[i] & kActive) {
-      lo = std::min(lo, ns.horizon[i]);
-      hi = std::max(hi, ns.horizon[i]);
-    }
-  if (lo < hi) build_reverse(bf, ns);
+  if (state_based)
+    for (std::size_t i = 0; i < ns.size(); ++i)
+      if (ns.flags[i] & kActive) {
+        lo = std::min(lo, ns.horizon[i]);
+        hi = std::max(hi, ns.horizon[i]);
+      }
+  if (!(lo < hi)) {
+    bf.reverse_at.clear();
+    bf.reverse_beta.clear();
+    return;
+  }
+  if (!changed || bf.reverse_at.empty()) {
+    build_reverse(bf, ns);
+    return;
+  }
+  // A row's far-end factors change with its own row and with its far ends' rows.
+  const std::size_t n = bf.num_nodes();
+  std::vector<char> redo(n, 0);
+#pragma omp parallel for schedule(dynamic, 256)
+  for (std::size_t i = 0; i < n; ++i) {
+    bool r = i >= changed->size() || (*changed)[i];
+    for (std::uint64_t k = bf.begin(i); k < bf.end(i) && !r; ++k)
+      r = bf.neighbor[k] < changed->size() ? (*changed)[bf.neighbor[k]] != 0 : true;
+    redo[i] = r;
+  }
+  build_reverse(bf, ns, &redo);
 }
 
 void mark_unbreakable_bonds(const NodeSet& ns, BondFamilies& bf, const std::vector<char>* rows) {

@@ -72,12 +72,18 @@ void build_transpose(BondFamilies& bonds);
 // Builds reverse_at and reverse_beta: each row's far-end quadrature factors, kept for the rows
 // where one differs from the row's own (BondFamilies). Only rows with a far end of another
 // horizon or cell size are searched: between equal cells and horizons the factors agree.
-void build_reverse(BondFamilies& bonds, const NodeSet& nodes);
+// `redo`: only these rows are made again; the others keep theirs (their rows and their far
+// ends' rows unchanged since, wherever they now lie).
+void build_reverse(BondFamilies& bonds, const NodeSet& nodes,
+                   const std::vector<char>* redo = nullptr);
 
 // What a force form reads of the other ends' rows, made again after rows were built or moved
 // and their factors corrected: the dual-horizon transpose, or the plain LPS pairing's far-end
-// factors where the active nodes have more than one horizon.
-void index_pairs(BondFamilies& bonds, const NodeSet& nodes, bool dual_horizon, bool state_based);
+// factors where the active nodes have more than one horizon. `changed`: the rows an event
+// searched again or whose factors it corrected (every row that reaches a changed node is among
+// them); the far-end factors of the other rows not bonded to one are kept.
+void index_pairs(BondFamilies& bonds, const NodeSet& nodes, bool dual_horizon, bool state_based,
+                 const std::vector<char>* changed = nullptr);
 
 // Bonds with an end on a no-fail node can never break (flag carried by the bond's sign).
 // `rows` (optional): only the rows of flagged nodes (the others are known to be up to date).
