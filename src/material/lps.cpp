@@ -131,11 +131,11 @@ std::size_t forces(NodeSet& ns, BondFamilies& bf, const LpsConstants& c, bool al
     const double s0 = (allow_breaking && !(ns.flags[i] & kNoFail)) ? ns.critical_stretch[i] : INFINITY;
     const std::uint64_t kb = bf.begin(i), ke = bf.end(i);
     const double* isf = B ? sc.block_inv_stretch.data() + blk[i] * nblocks : nullptr;
-    // Far-end factors: a row at a level interface reads its own (far), the others their own
-    // factor both ways (bji is then bp: the magnitude of an intact bond's factor).
+    // The far ends' factors, by place in the row: a row at a level interface has them in
+    // reverse_beta; any other row's are its own (bji is then bp, an intact bond's magnitude).
     const float* far = (R && bf.reverse_at[i] != BondFamilies::kNoReverse)
-                           ? bf.reverse_beta.data() + bf.reverse_at[i] - kb
-                           : beta;
+                           ? bf.reverse_beta.data() + bf.reverse_at[i]
+                           : beta + kb;
     double a0 = 0, a1 = 0, a2 = 0, wdev = 0, smax = -INFINITY;
     // Fast pass: t_ij + t_ji of intact bonds and the largest stretch; nothing written per bond.
 #pragma omp simd reduction(+ : a0, a1, a2, wdev) reduction(max : smax)
@@ -155,7 +155,8 @@ std::size_t forces(NodeSet& ns, BondFamilies& bf, const LpsConstants& c, bool al
         wj *= omega<S>(x * pk[j + 3]);
       }
       const double edi = e - Ci * x;
-      const double bji = R ? std::abs(static_cast<double>(far[k])) * static_cast<double>(bp > 0.0) : bp;
+      const double bji =
+          R ? std::abs(static_cast<double>(far[k - kb])) * static_cast<double>(bp > 0.0) : bp;
       const double t = wi * (Ai * x + Bi * edi) * bp +
                        wj * (pk[j] * x + pk[j + 1] * (e - pk[j + 2] * x)) * bji;
       const double fr = t * yp[j + 3] / r;
@@ -198,7 +199,7 @@ std::size_t forces(NodeSet& ns, BondFamilies& bf, const LpsConstants& c, bool al
           wj *= omega<S>(x * pk[j + 3]);
         }
         const double edi = e - Ci * x;
-        const double bji = R ? std::abs(static_cast<double>(far[k])) : b;
+        const double bji = R ? std::abs(static_cast<double>(far[k - kb])) : b;
         const double t = wi * (Ai * x + Bi * edi) * b +
                          wj * (pk[j] * x + pk[j + 1] * (e - pk[j + 2] * x)) * bji;
         const double fr = t * yp[j + 3] / r;
