@@ -155,11 +155,13 @@ std::size_t forces(NodeSet& ns, BondFamilies& bf, const LpsConstants& c, bool al
         wj *= omega<S>(x * pk[j + 3]);
       }
       const double edi = e - Ci * x;
-      const double bji =
-          R ? std::abs(static_cast<double>(far[k - kb])) * static_cast<double>(bp > 0.0) : bp;
-      const double t = wi * (Ai * x + Bi * edi) * bp +
-                       wj * (pk[j] * x + pk[j + 1] * (e - pk[j + 2] * x)) * bji;
-      const double fr = t * yp[j + 3] / r;
+      const double ti = wi * (Ai * x + Bi * edi), tj = wj * (pk[j] * x + pk[j + 1] * (e - pk[j + 2] * x));
+      double fr;
+      if constexpr (R)
+        fr = (ti * bp + tj * std::abs(static_cast<double>(far[k - kb])) * static_cast<double>(bp > 0.0)) *
+             yp[j + 3] / r;
+      else
+        fr = (ti + tj) * bp * yp[j + 3] / r;
       a0 += fr * d0;
       a1 += fr * d1;
       a2 += fr * d2;
@@ -199,10 +201,12 @@ std::size_t forces(NodeSet& ns, BondFamilies& bf, const LpsConstants& c, bool al
           wj *= omega<S>(x * pk[j + 3]);
         }
         const double edi = e - Ci * x;
-        const double bji = R ? std::abs(static_cast<double>(far[k - kb])) : b;
-        const double t = wi * (Ai * x + Bi * edi) * b +
-                         wj * (pk[j] * x + pk[j + 1] * (e - pk[j + 2] * x)) * bji;
-        const double fr = t * yp[j + 3] / r;
+        const double ti = wi * (Ai * x + Bi * edi), tj = wj * (pk[j] * x + pk[j + 1] * (e - pk[j + 2] * x));
+        double fr;
+        if constexpr (R)
+          fr = (ti * b + tj * std::abs(static_cast<double>(far[k - kb]))) * yp[j + 3] / r;
+        else
+          fr = (ti + tj) * V / r;
         a0 += fr * d0;
         a1 += fr * d1;
         a2 += fr * d2;
