@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "adapt/refine.hpp"
 #include "analysis/energy.hpp"
 #include "run/simulation.hpp"
 #include "input/deck.hpp"
@@ -26,6 +27,19 @@ inline std::vector<std::uint32_t> active_near(const NodeSet& ns, double cx, doub
         std::abs(ns.x[1][i] - cy) < r)
       out.push_back(i);
   return out;
+}
+
+// Refinement events one after another, each of the active 2D nodes of `level` within r of
+// (cx, cy), up to max_level 2: zones of two levels side by side.
+struct Zone {
+  double cx, cy, r;
+  int level;
+};
+inline void refine_zones(Model& m, std::initializer_list<Zone> zones) {
+  AdaptSpec spec;
+  spec.enabled = true;
+  spec.max_level = 2;
+  for (const Zone& z : zones) refine_nodes(m, active_near(m.nodes, z.cx, z.cy, z.r, z.level), spec);
 }
 
 // A box region, {box: {min: lo, max: hi}} (loads, boundary conditions, holes, no_fail zones,

@@ -6,7 +6,6 @@
 
 #include <cmath>
 
-#include "adapt/refine.hpp"
 #include "analysis/energy.hpp"
 #include "input/deck_builder.hpp"
 #include "setup/build_model.hpp"
@@ -377,12 +376,7 @@ TEST(Lps, EveryRowReadsItsFarEndsOwnQuadratureFactorsAfterEvents) {
         .set("solver.steps", 1);
     Model m = build_model(d.build("plate"));
     EXPECT_TRUE(m.bonds.reverse_at.empty());  // one horizon: nothing to read
-    AdaptSpec spec;
-    spec.enabled = true;
-    spec.max_level = 2;
-    refine_nodes(m, test::active_near(m.nodes, 0.006, 0.008, 0.003, 0), spec);
-    refine_nodes(m, test::active_near(m.nodes, 0.006, 0.008, 0.0012, 1), spec);
-    refine_nodes(m, test::active_near(m.nodes, 0.012, 0.008, 0.002, 0), spec);
+    test::refine_zones(m, {{0.006, 0.008, 0.003, 0}, {0.006, 0.008, 0.0012, 1}, {0.012, 0.008, 0.002, 0}});
     const BondFamilies& bf = m.bonds;
     ASSERT_FALSE(bf.reverse_at.empty());
     std::size_t rows = 0, checked = 0, wrong = 0, differing = 0;

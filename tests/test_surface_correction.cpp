@@ -182,12 +182,7 @@ Model refined_plate(const std::string& correction, bool global) {
       .set("solver.steps", 1);
   Model m = build_model(d.build("plate"));
   m.window_surface_correction = true;  // as the adaptor sets it for a run's events
-  AdaptSpec spec;
-  spec.enabled = true;
-  spec.max_level = 2;
-  refine_nodes(m, test::active_near(m.nodes, 0.003, 0.008, 0.003, 0), spec);
-  refine_nodes(m, test::active_near(m.nodes, 0.002, 0.008, 0.0012, 1), spec);
-  refine_nodes(m, test::active_near(m.nodes, 0.015, 0.008, 0.002, 0), spec);
+  test::refine_zones(m, {{0.003, 0.008, 0.003, 0}, {0.002, 0.008, 0.0012, 1}, {0.015, 0.008, 0.002, 0}});
   unsetenv("PERIADAPT_GLOBAL_REBUILD");
   return m;
 }
