@@ -145,6 +145,7 @@ TEST(DeckErrors, AdaptWithoutTriggersTakesTheDocumentedDefaults) {
   EXPECT_EQ(*d.adapt.stretch_fraction, kDefaultStretchTrigger);
   EXPECT_TRUE(d.adapt.damage_trigger);
   EXPECT_TRUE(d.adapt.interface_horizon);
+  EXPECT_TRUE(d.adapt.interface_level_stretch);
   EXPECT_FALSE(d.adapt.energy_fraction.has_value());
   const Deck e = parse_deck(std::string(kGood) + "adapt: {max_level: 1, energy_trigger: 0.5}\n",
                             "good.yaml");
@@ -275,6 +276,8 @@ TEST(DeckErrors, EveryLoaderCheckRefusesItsCaseNamingTheKey) {
       {{"adapt={max_level: 1, initial_refinement: [{region: {all: true}, level: 2}]}"},
        "adapt.max_level", "initial_refinement"},
       {{"adapt={m_per_level: [3, 3]}"}, "adapt.m_per_level", "delta_m"},
+      {{"adapt={energy_trigger: 0.5, interface_stretch: level}"}, "adapt.interface_stretch", "interface_horizon"},
+      {{"adapt={max_level: 1, interface_stretch: both}"}, "adapt.interface_stretch", "allowed"},
       {{"adapt={scaling: delta_m, m_per_level: [4, 3]}"}, "adapt.m_per_level", "level 0"},
       {{"adapt={method: A, refine_loads: true, energy_trigger: 0.5}"}, "adapt.refine_loads", "method a"},
       {{"adapt={method: A, coarsen: true, energy_trigger: 0.5}"}, "adapt.coarsen", "method"},

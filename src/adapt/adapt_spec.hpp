@@ -43,6 +43,10 @@ struct AdaptSpec {
   HorizonScaling scaling = HorizonScaling::Delta;
   std::vector<double> m_per_level;  // DeltaM: m of levels 0, 1, ... (at least max_level + 1)
   bool interface_horizon = false;   // thesis 3.2.3: interface nodes get m x distance to coarse
+  // With interface_horizon: an interface node's critical stretch stays its level's (true), or
+  // follows its widened horizon as in the thesis (F-14; false), which makes it fail below the
+  // strain its neighbours of the same level hold.
+  bool interface_level_stretch = true;
   // Interface rows' bond factors fitted so that a uniform strain pulls no node (patch test;
   // discretize/interface_quadrature.hpp). Bond-based forces only.
   bool interface_fit = false;

@@ -41,21 +41,32 @@ std::vector<double> level_micromodulus_factors(const Model& m, const AdaptSpec& 
   return f;
 }
 
-void scale_material_to_horizon(Model& m, std::size_t i, double factor) {
+void scale_material_to_horizon(Model& m, std::size_t i, double factor, double failure_horizon) {
   const MaterialLaw& mat = node_material(m, i);
   NodeSet& ns = m.nodes;
   const double d = ns.horizon[i];
-  const double c0 = micromodulus_c0(ns.dim, mat.plane, mat.shape, mat.bb_equivalent_E, d, mat.thickness);
+  auto c0_at = [&](double h) {
+    return micromodulus_c0(ns.dim, mat.plane, mat.shape, mat.bb_equivalent_E, h, mat.thickness);
+  };
+  const double c0 = c0_at(d);
   ns.micromodulus[i] = c0 * factor;
+  const double df = failure_horizon > 0 ? failure_horizon : d;
   // The breaking stretch is the analytic one: calibration changes the stiffness, not the strain
   // at which a bond fails.
   if (mat.G0 > 0)
-    ns.critical_stretch[i] = breaking_stretch(m.formulation, ns.dim, mat, c0, d);
+    ns.critical_stretch[i] = breaking_stretch(m.formulation, ns.dim, mat, df == d ? c0 : c0_at(df), df);
   else if (std::isfinite(mat.s0))
     // s0 given directly: keep the fracture energy it implies at the base horizon (s0 ~ delta^-1/2).
-    ns.critical_stretch[i] = mat.s0 * std::sqrt(m.horizon / d);
+    ns.critical_stretch[i] = mat.s0 * std::sqrt(m.horizon / df);
   else
     ns.critical_stretch[i] = mat.s0;
+}
+
+double failure_horizon(const Model& m, const AdaptSpec& spec, std::size_t i) {
+  const NodeSet& ns = m.nodes;
+  return (spec.interface_horizon && spec.interface_level_stretch && ns.level[i] > 0)
+             ? level_horizon(m, spec, ns.level[i])
+             : ns.horizon[i];
 }
 
 RefineStats refine_nodes(Model& m, std::vector<std::uint32_t> parents, const AdaptSpec& spec,

@@ -43,7 +43,13 @@ std::vector<double> level_micromodulus_factors(const Model& m, const AdaptSpec& 
 
 // Sets micromodulus and critical stretch of node i from its current horizon; `factor` from
 // micromodulus_factor at the m of the node's level (an interface horizon keeps its level's).
-void scale_material_to_horizon(Model& m, std::size_t i, double factor = 1.0);
+// `failure_horizon` > 0: the critical stretch is the one of that horizon instead.
+void scale_material_to_horizon(Model& m, std::size_t i, double factor = 1.0,
+                               double failure_horizon = 0.0);
+
+// The horizon node i's critical stretch belongs to: its level's where an interface horizon
+// widened it and spec.interface_level_stretch keeps the level's critical stretch.
+double failure_horizon(const Model& m, const AdaptSpec& spec, std::size_t i);
 
 // `inherit_boundary`: children of loaded or constrained parents join the parent's loads (same
 // force density, so the same total force) and prescribed motions (used by the initial refinement;

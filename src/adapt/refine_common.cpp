@@ -202,7 +202,8 @@ void finish_refinement(Model& m, const AdaptSpec& spec, const CrackMemory& memor
       const double want = std::isfinite(dmin) ? std::max(base, mi * dmin) : base;
       if (want != ns.horizon[i]) {
         ns.horizon[i] = want;
-        scale_material_to_horizon(m, i, level_factor.at(static_cast<std::size_t>(ns.level[i])));
+        scale_material_to_horizon(m, i, level_factor.at(static_cast<std::size_t>(ns.level[i])),
+                                  spec.interface_level_stretch ? base : 0.0);
       }
     }
   }

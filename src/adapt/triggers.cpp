@@ -86,7 +86,7 @@ std::vector<std::uint32_t> stretch_trigger(const Model& m, const AdaptSpec& spec
     const double limit =
         beta * std::min(m.material.onset_stretch,
                         ns.critical_stretch[i] *
-                            std::sqrt(ns.horizon[i] / level_horizon(m, spec, ns.level[i] + 1)));
+                            std::sqrt(failure_horizon(m, spec, i) / level_horizon(m, spec, ns.level[i] + 1)));
     hot[i] = (tracked ? m.breakable_stretch[i]
                       : largest_breakable_stretch(m, static_cast<std::uint32_t>(i))) >= limit;
   }

@@ -234,6 +234,12 @@ void parse_adapt(Section& top, Deck& dk) {
     // come near stressed free surfaces: without the correction a crack starts where an interface
     // meets a hole instead of at the hole's stress peak.
     ad.interface_horizon = a->boolean("interface_horizon", defaults);
+    // The widened horizon is a quadrature repair; the thesis (F-14) also takes the critical
+    // stretch of the widened horizon, which breaks interface bonds at 0.78 (method B, m = 3) of
+    // the strain the level's other nodes hold.
+    ad.interface_level_stretch = a->choice("interface_stretch", {"level", "horizon"}, "level") == "level";
+    if (a->has("interface_stretch") && !ad.interface_horizon)
+      a->fail("interface_stretch", "only used with interface_horizon: true");
     ad.refine_loads = a->boolean("refine_loads", defaults && ad.method == NodeGeneration::B);
     ad.interface_fit = a->boolean("interface_fit", false);
     if (ad.interface_fit && !Formulation::named(dk.formulation)->bond_based())
