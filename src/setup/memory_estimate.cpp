@@ -88,9 +88,15 @@ MemoryEstimate estimate_memory(const Deck& dk) {
   e.bonds = e.nodes * per_node;
   const double spare = dk.adapt.enabled ? 1.25 : 1.0;
   const auto f = Formulation::named(dk.formulation, dk.dual_horizon);
-  const double per_bond =
-      BondFamilies::bytes_per_bond() + static_cast<double>(f ? f->extra_bytes_per_bond() : 0);
-  e.bytes = e.nodes * (NodeSet::bytes_per_node() + 16 + 24) + e.bonds * per_bond * spare;
+  // Plain LPS across level interfaces: the far ends' quadrature factors, an index per node and
+  // at most a float per bond (every row at an interface).
+  const bool far_factors = (dk.adapt.enabled || !dk.adapt.initial.empty()) && f &&
+                           f->state_based() && !dk.dual_horizon;
+  const double per_bond = BondFamilies::bytes_per_bond() +
+                          static_cast<double>(f ? f->extra_bytes_per_bond() : 0) +
+                          (far_factors ? sizeof(float) : 0);
+  e.bytes = e.nodes * (NodeSet::bytes_per_node() + 16 + 24 + (far_factors ? 8 : 0)) +
+            e.bonds * per_bond * spare;
   e.available = available_memory();
   return e;
 }
