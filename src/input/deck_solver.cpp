@@ -235,8 +235,8 @@ void parse_adapt(Section& top, Deck& dk) {
     // meets a hole instead of at the hole's stress peak.
     ad.interface_horizon = a->boolean("interface_horizon", defaults);
     // The widened horizon is a quadrature repair; the thesis (F-14) also takes the critical
-    // stretch of the widened horizon, which breaks interface bonds at 0.78 (method B, m = 3) of
-    // the strain the level's other nodes hold.
+    // stretch of the widened horizon, which breaks interface bonds at about 0.8 (method B, m = 3)
+    // of the strain the level's other nodes hold.
     ad.interface_level_stretch = a->choice("interface_stretch", {"level", "horizon"}, "level") == "level";
     if (a->has("interface_stretch") && !ad.interface_horizon)
       a->fail("interface_stretch", "only used with interface_horizon: true");
