@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <map>
 
 #include "adapt/adaptor.hpp"
@@ -443,6 +444,69 @@ TEST(Adapt, FullyRefinedGridEqualsTheGridBuiltDirectly) {
     }
   }
   EXPECT_LT(worst, 1e-9 * scale);
+}
+
+// Bodies whose boundary cuts the lattice (a hole, a disk, a rotated box): with
+// adapt.fill_boundary_cells, refining every node once gives the uniform fine grid's nodes,
+// volumes and families, including the nodes in sub-cells of coarse cells that have no node
+// (their centres lie outside the body). Without it the refined body keeps the coarse staircase,
+// whose corners the fine nodes resolve as re-entrant corners: a level-2 zone beside a hole then
+// cracks at those corners under a load the uniform finest grid carries (docs/agrs.md).
+TEST(Adapt, FullyRefinedCurvedBodiesEqualTheirFineGrids) {
+  // Glass plates (test_helpers.hpp) with other bodies; 10 steps of 50 ns.
+  auto base = [](std::initializer_list<double> lo, std::initializer_list<double> hi, double h) {
+    DeckBuilder d = test::glass_plate(lo, hi);
+    d.set("discretization.spacing", h).set("solver.time_step", 5.0e-8).set("solver.steps", 10);
+    return d;
+  };
+  auto holed = [&](double h) {
+    return base({0.0, 0.0}, {0.03, 0.03}, h)
+        .append("discretization.holes",
+                DeckBuilder().set("disk.center", {0.015, 0.015}).set("disk.radius", 0.0053))
+        .build("plate with a hole");
+  };
+  auto disk = [&](double h) {
+    return base({0.0, 0.0}, {0.0, 0.0}, h)
+        .set("discretization.body",
+             DeckBuilder().set("disk.center", {0.0, 0.0}).set("disk.radius", 0.0117))
+        .build("disk");
+  };
+  auto rotated = [&](double h) {
+    return base({-0.01, -0.006}, {0.01, 0.006}, h)
+        .set("discretization.rotation_deg", 17.0)
+        .build("rotated box");
+  };
+  for (auto make : {std::function<Deck(double)>(holed), std::function<Deck(double)>(disk),
+                    std::function<Deck(double)>(rotated)}) {
+    const Model b = build_model(make(0.0005));
+    AdaptSpec spec;
+    spec.enabled = true;
+    Model plain = build_model(make(0.001));
+    EXPECT_EQ(refine_nodes(plain, all_active(plain), spec).fillers, 0u);
+    EXPECT_LT(all_active(plain).size(), all_active(b).size());  // the coarse staircase
+    spec.fill_boundary_cells = true;
+    Model a = build_model(make(0.001));
+    const RefineStats st = refine_nodes(a, all_active(a), spec);
+    EXPECT_GT(st.fillers, 0u);
+    const auto ia = all_active(a), ib = all_active(b);
+    auto key = [](const NodeSet& ns, std::uint32_t i) {
+      return std::make_pair(std::llround(ns.x[0][i] * 1e7), std::llround(ns.x[1][i] * 1e7));
+    };
+    std::map<std::pair<long long, long long>, std::uint32_t> pos_b;
+    for (std::uint32_t i : ib) pos_b[key(b.nodes, i)] = i;
+    std::size_t matched = 0, same_family = 0;
+    for (std::uint32_t i : ia) {
+      const auto it = pos_b.find(key(a.nodes, i));
+      if (it == pos_b.end()) continue;
+      ++matched;
+      const std::uint32_t j = it->second;
+      same_family += a.bonds.end(i) - a.bonds.begin(i) == b.bonds.end(j) - b.bonds.begin(j);
+      EXPECT_NEAR(a.nodes.volume[i], b.nodes.volume[j], 1e-12 * b.nodes.volume[j]);
+    }
+    EXPECT_EQ(ia.size(), ib.size());
+    EXPECT_EQ(matched, ib.size());
+    EXPECT_EQ(same_family, ib.size());
+  }
 }
 
 TEST(Adapt, WithTheDamageTriggerBondsBreakOnlyOnTheFinestLevel) {

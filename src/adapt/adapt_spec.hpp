@@ -50,6 +50,12 @@ struct AdaptSpec {
   // Interface rows' bond factors fitted so that a uniform strain pulls no node (patch test;
   // discretize/interface_quadrature.hpp). Bond-based forces only.
   bool interface_fit = false;
+  // Method B: where a hole, a clipped body or a rotated lattice leaves a neighbouring cell of a
+  // parent without a node, its sub-cells inside the body join as children too, and the children
+  // of such boundary parents take a fine cell's volume: a refined zone gets the fine grid's
+  // boundary rather than the coarse staircase (docs/agrs.md, "Refined zones at curved
+  // boundaries").
+  bool fill_boundary_cells = false;
   // Interface rows' ghost forces removed to first order in the local strain
   // (solver/ghost_correction.hpp). Source-horizon pairing, PMB and LPS.
   bool ghost_correction = false;

@@ -1,6 +1,7 @@
 #include "adapt/refine.hpp"
 
 #include "adapt/crack_memory.hpp"
+#include "adapt/boundary_fill.hpp"
 #include "adapt/refine_common.hpp"
 
 #include <algorithm>
@@ -85,7 +86,6 @@ RefineStats refine_nodes(Model& m, std::vector<std::uint32_t> parents, const Ada
   const CrackMemory memory = remember_cracks(m, is_parent);
 
   // Children: offsets +-h/4 along the (possibly rotated) lattice axes.
-  const double cr = std::cos(m.lattice_rotation), sr = std::sin(m.lattice_rotation);
   const int nchild = 1 << D;
   // Every parent's field gradients first, on the grid as it was: fitted while earlier parents
   // were already switched off, a parent's fit would depend on the processing order (and a
@@ -106,7 +106,10 @@ RefineStats refine_nodes(Model& m, std::vector<std::uint32_t> parents, const Ada
     Vec3 pos;
     double u[3], v[3], a[3];
     bool reanchored;
+    bool filler;  // in an empty cell next to the parent (adapt/boundary_fill.hpp)
   };
+  const BoundaryFill fill = boundary_fillers(m, spec, memory, parents, is_parent);
+  std::size_t next_filler = 0;
   std::vector<Child> kids;
   kids.reserve(parents.size() * static_cast<std::size_t>(nchild));
   std::vector<std::size_t> first_kid(parents.size() + 1, 0);
@@ -117,16 +120,11 @@ RefineStats refine_nodes(Model& m, std::vector<std::uint32_t> parents, const Ada
     const double h = ns.spacing[p];
     const Vec3 xp{ns.x[0][p], ns.x[1][p], ns.x[2][p]};
     // Sub-cell centres inside the body (a boundary cell of a node-on-edge grid keeps only its
-    // inner half or quarter); the parent's volume is shared equally among them.
+    // inner half or quarter); the parent's volume is shared equally among them, but for
+    // boundary cells that fill their empty neighbours (a fine cell's volume each, below).
     std::vector<std::array<double, 3>> offs;
     for (int c = 0; c < nchild; ++c) {
-      std::array<double, 3> off{0, 0, 0};
-      for (int d = 0; d < D; ++d) off[d] = ((c >> d) & 1 ? 0.25 : -0.25) * h;
-      if (D == 2) {
-        const double ox = off[0], oy = off[1];
-        off[0] = cr * ox - sr * oy;
-        off[1] = sr * ox + cr * oy;
-      }
+      const std::array<double, 3> off = sub_cell_offset(m, c, h);
       const Vec3 pos{xp[0] + off[0], xp[1] + off[1], xp[2] + off[2]};
       if (inside_body(m, pos, h)) offs.push_back(off);
     }
@@ -135,27 +133,41 @@ RefineStats refine_nodes(Model& m, std::vector<std::uint32_t> parents, const Ada
     for (const auto& o : offs)
       for (int d = 0; d < D; ++d) mean[d] += o[static_cast<std::size_t>(d)] / offs.size();
     for (const auto& off : offs) {
-      Child c{p, {xp[0] + off[0], xp[1] + off[1], xp[2] + off[2]}, {}, {}, {}, false};
+      Child c{p, {xp[0] + off[0], xp[1] + off[1], xp[2] + off[2]}, {}, {}, {}, false, false};
       double de[3] = {0, 0, 0};
       for (int e = 0; e < D; ++e) de[e] = off[static_cast<std::size_t>(e)] - mean[e];
       c.reanchored = interpolate_new_node(m, memory, p, G, de, c.pos, c.u, c.v, c.a);
       st.reanchored += c.reanchored;
       kids.push_back(c);
     }
+    for (; next_filler < fill.fillers.size() && fill.fillers[next_filler].parent == p; ++next_filler) {
+      const BoundaryFiller& f = fill.fillers[next_filler];
+      Child c{p, f.pos, {}, {}, {}, false, true};
+      for (int d = 0; d < 3; ++d) c.u[d] = f.u[d], c.v[d] = f.v[d], c.a[d] = f.a[d];
+      ++st.fillers;
+      kids.push_back(c);
+    }
   }
   first_kid[parents.size()] = kids.size();
 
   const std::vector<double> level_factor = level_micromodulus_factors(m, spec);
+  std::vector<char> is_filler;  // per appended node
   for (std::size_t pk = 0; pk < parents.size(); ++pk) {
     const std::uint32_t p = parents[pk];
-    const std::size_t nk = first_kid[pk + 1] - first_kid[pk];
+    std::size_t nk = 0;  // the parent's own sub-cells, which share its volume
+    for (std::size_t c = first_kid[pk]; c < first_kid[pk + 1]; ++c) nk += !kids[c].filler;
     if (nk == 0) continue;  // cannot happen for a node inside the body; keep the parent
     const double h = ns.spacing[p];
     const int level = ns.level[p] + 1;
     const double factor = level_factor.at(static_cast<std::size_t>(level));
     for (std::size_t c = first_kid[pk]; c < first_kid[pk + 1]; ++c) {
       const Child& kid = kids[c];
-      const std::size_t q = ns.append(kid.pos, ns.volume[p] / static_cast<double>(nk), 0.5 * h);
+      // A boundary parent's children and fillers take a fine cell's volume, as on the fine grid
+      // (mass the coarse cell had outside the body goes, the fillers' comes); the others share
+      // the parent's.
+      const double vol = ns.volume[p] / static_cast<double>(fill.boundary_parent[p] ? nchild : nk);
+      const std::size_t q = ns.append(kid.pos, vol, 0.5 * h);
+      is_filler.push_back(kid.filler);
       ns.level[q] = static_cast<std::int8_t>(level);
       ns.parent[q] = static_cast<std::int32_t>(p);
       ns.density[q] = ns.density[p];
@@ -173,19 +185,26 @@ RefineStats refine_nodes(Model& m, std::vector<std::uint32_t> parents, const Ada
     ns.flags[p] = static_cast<std::uint8_t>(ns.flags[p] & ~kActive);
     for (int d = 0; d < 3; ++d) ns.v[d][p] = ns.a[d][p] = ns.f[d][p] = 0.0;
     ++st.parents;
-    st.children += nk;
+    st.children += first_kid[pk + 1] - first_kid[pk];
   }
   // Re-anchored children carry the other face's velocity, so the parents' momentum is not
   // reproduced exactly: a uniform velocity shift of all new nodes restores it (as in method A).
+  // Fillers are mass the coarse grid did not have, moving with the body: their own momentum is
+  // added, not taken from the others.
   if (st.reanchored > 0) {
     // Exact sums of each rank's own nodes (analysis/energy.hpp): the serial run's bits.
     const std::array<double, 3> P =
         momentum_and_kinetic(ns, m.partition.active ? &m.partition : nullptr).momentum;
-    double M = 0;
-    for (std::size_t i = n0; i < ns.size(); ++i)
-      if (ns.flags[i] & kActive) M += ns.density[i] * ns.volume[i];
+    double M = 0, P_fill[3] = {0, 0, 0};
+    for (std::size_t i = n0; i < ns.size(); ++i) {
+      if (!(ns.flags[i] & kActive)) continue;
+      const double mi = ns.density[i] * ns.volume[i];
+      M += mi;
+      if (is_filler[i - n0])
+        for (int d = 0; d < D; ++d) P_fill[d] += mi * ns.v[d][i];
+    }
     for (std::size_t q = n0; q < ns.size(); ++q)
-      for (int d = 0; d < D; ++d) ns.v[d][q] += (st.momentum_before[d] - P[d]) / M;
+      for (int d = 0; d < D; ++d) ns.v[d][q] += (st.momentum_before[d] + P_fill[d] - P[d]) / M;
   }
 
   if (inherit_boundary) inherit_loads_and_motions(m, n0, is_parent, false);

@@ -1,7 +1,9 @@
 #pragma once
 // Node generation for AGRS, method B (thesis 3.2.3, Fig. 3.5b): a parent cell of spacing h splits
 // into 2^dim children at the centres of its sub-cells (spacing h/2, volume V/2^dim); the parent is
-// deactivated and keeps its slot, so node ids stay stable. Children get their horizon from the
+// deactivated and keeps its slot, so node ids stay stable. With adapt.fill_boundary_cells, where a
+// hole, a clipped body or a rotated lattice leaves a neighbouring cell without a node, its
+// sub-cells inside the body join as fillers, so that a refined zone has the fine grid's boundary. Children get their horizon from the
 // scaling mode, micromodulus and critical stretch from their horizon (thesis Eqs. 2.13, 2.15,
 // 2.21), and u, v, a from a linear fit over the parent's visible family (intact bonds only, so
 // no field is carried across a crack), anchored at the parent's values: the children's mean
@@ -23,6 +25,7 @@ struct RefineStats {
   std::size_t parents = 0;
   std::size_t children = 0;
   std::size_t reanchored = 0;  // children interpolated from a node other than their parent
+  std::size_t fillers = 0;     // children in empty cells next to their parent (curved surfaces)
   std::array<double, 3> momentum_before{0, 0, 0};
   std::array<double, 3> momentum_after{0, 0, 0};
   double kinetic_before = 0, kinetic_after = 0;

@@ -242,6 +242,10 @@ void parse_adapt(Section& top, Deck& dk) {
       a->fail("interface_stretch", "only used with interface_horizon: true");
     ad.refine_loads = a->boolean("refine_loads", defaults && ad.method == NodeGeneration::B);
     ad.interface_fit = a->boolean("interface_fit", false);
+    ad.fill_boundary_cells = a->boolean("fill_boundary_cells", false);
+    if (ad.fill_boundary_cells && ad.method == NodeGeneration::A)
+      a->fail("fill_boundary_cells", "fills the empty cells next to method B's parents (method A "
+                                     "places its lattice around each parent already); use method B");
     if (ad.interface_fit && !Formulation::named(dk.formulation)->bond_based())
       a->fail("interface_fit", "the fit zeroes the third bond moments that a bond-based force "
                                "sums; formulation " + dk.formulation + " is state-based");
