@@ -509,6 +509,31 @@ TEST(Adapt, FullyRefinedCurvedBodiesEqualTheirFineGrids) {
   }
 }
 
+TEST(Adapt, ABodyInUniformMotionKeepsItsVelocityThroughFillersAndReanchoredChildren) {
+  // The rotated lattice's staircase edges are filled (fillers bring mass, boundary cells lose
+  // what lay outside the body) and the pre-crack re-anchors children: in a uniform velocity
+  // field every new node must move with the body, the momentum changing only by the mass the
+  // fine grid's volumes add or remove.
+  Model m = build_model(rotated_cracked_plate());
+  const double v0[2] = {1.5, -0.7};
+  for (std::size_t i = 0; i < m.nodes.size(); ++i)
+    for (int d = 0; d < 2; ++d) m.nodes.v[d][i] = v0[d];
+  AdaptSpec spec;
+  spec.enabled = true;
+  spec.fill_boundary_cells = true;
+  const RefineStats st = refine_nodes(m, all_active(m), spec);
+  EXPECT_GT(st.fillers, 0u);
+  EXPECT_GT(st.reanchored, 0u);
+  double worst = 0, mass = 0;
+  for (std::size_t i = 0; i < m.nodes.size(); ++i)
+    if (m.nodes.flags[i] & kActive) {
+      mass += m.nodes.density[i] * m.nodes.volume[i];
+      for (int d = 0; d < 2; ++d) worst = std::max(worst, std::abs(m.nodes.v[d][i] - v0[d]));
+    }
+  EXPECT_LT(worst, 1e-12);
+  for (int d = 0; d < 2; ++d) EXPECT_NEAR(st.momentum_after[d], mass * v0[d], 1e-12 * mass);
+}
+
 TEST(Adapt, WithTheDamageTriggerBondsBreakOnlyOnTheFinestLevel) {
   // A pre-cracked plate pulled hard: every bond that the dynamics breaks must belong to nodes
   // that could not be refined further (the step is undone and redone after refining).

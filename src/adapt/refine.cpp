@@ -152,6 +152,9 @@ RefineStats refine_nodes(Model& m, std::vector<std::uint32_t> parents, const Ada
 
   const std::vector<double> level_factor = level_micromodulus_factors(m, spec);
   std::vector<char> is_filler;  // per appended node
+  // What the fine grid's volumes change in the momentum: the fillers' own, less what a boundary
+  // parent's cell had outside the body (at the parent's velocity).
+  double P_gained[3] = {0, 0, 0};
   for (std::size_t pk = 0; pk < parents.size(); ++pk) {
     const std::uint32_t p = parents[pk];
     std::size_t nk = 0;  // the parent's own sub-cells, which share its volume
@@ -183,6 +186,10 @@ RefineStats refine_nodes(Model& m, std::vector<std::uint32_t> parents, const Ada
       ns.sync_current(q);
     }
     ns.flags[p] = static_cast<std::uint8_t>(ns.flags[p] & ~kActive);
+    if (fill.boundary_parent[p]) {
+      const double lost = ns.density[p] * ns.volume[p] * (1.0 - static_cast<double>(nk) / nchild);
+      for (int d = 0; d < D; ++d) P_gained[d] -= lost * ns.v[d][p];
+    }
     for (int d = 0; d < 3; ++d) ns.v[d][p] = ns.a[d][p] = ns.f[d][p] = 0.0;
     ++st.parents;
     st.children += first_kid[pk + 1] - first_kid[pk];
@@ -190,21 +197,22 @@ RefineStats refine_nodes(Model& m, std::vector<std::uint32_t> parents, const Ada
   // Re-anchored children carry the other face's velocity, so the parents' momentum is not
   // reproduced exactly: a uniform velocity shift of all new nodes restores it (as in method A).
   // Fillers are mass the coarse grid did not have, moving with the body: their own momentum is
-  // added, not taken from the others.
+  // added, not taken from the others (and a boundary parent's mass outside the body leaves with
+  // its own).
   if (st.reanchored > 0) {
     // Exact sums of each rank's own nodes (analysis/energy.hpp): the serial run's bits.
     const std::array<double, 3> P =
         momentum_and_kinetic(ns, m.partition.active ? &m.partition : nullptr).momentum;
-    double M = 0, P_fill[3] = {0, 0, 0};
+    double M = 0;
     for (std::size_t i = n0; i < ns.size(); ++i) {
       if (!(ns.flags[i] & kActive)) continue;
       const double mi = ns.density[i] * ns.volume[i];
       M += mi;
       if (is_filler[i - n0])
-        for (int d = 0; d < D; ++d) P_fill[d] += mi * ns.v[d][i];
+        for (int d = 0; d < D; ++d) P_gained[d] += mi * ns.v[d][i];
     }
     for (std::size_t q = n0; q < ns.size(); ++q)
-      for (int d = 0; d < D; ++d) ns.v[d][q] += (st.momentum_before[d] + P_fill[d] - P[d]) / M;
+      for (int d = 0; d < D; ++d) ns.v[d][q] += (st.momentum_before[d] + P_gained[d] - P[d]) / M;
   }
 
   if (inherit_boundary) inherit_loads_and_motions(m, n0, is_parent, false);
