@@ -137,37 +137,12 @@ BoundaryFill boundary_fillers(const Model& m, const AdaptSpec& spec, const Crack
         const auto off = sub_cell_offset(m, c, h);
         const Vec3 o = fill_plus(vc, {off[0], off[1], off[2]});
         if (!inside_body(m, o, h) || placed.count(key_of(level + 1, o))) continue;
-        // The nearest nodes that can see it, among the parent and its family (ties to
-        // round-off are common on a lattice).
-        std::vector<std::pair<double, std::uint32_t>> seen;
-        auto consider = [&](std::uint32_t j) {
-          if (!(ns.flags[j] & kActive)) return;
-          const Vec3 xj{ns.x[0][j], ns.x[1][j], ns.x[2][j]};
-          if (!sight_blocked(m, memory, xj, o)) seen.emplace_back(norm(sub(xj, o)), j);
-        };
-        consider(p);
-        for (std::uint64_t k = bf.begin(p); k < bf.end(p); ++k) consider(bf.neighbor[k]);
-        if (seen.empty()) continue;
-        double best = INFINITY;
-        for (const auto& sj : seen) best = std::min(best, sj.first);
+        // Its field: from the nearest nodes that can see it, among the parent and its family.
+        std::vector<std::uint32_t> candidates{p};
+        candidates.insert(candidates.end(), bf.neighbor.begin() + static_cast<std::ptrdiff_t>(bf.begin(p)),
+                          bf.neighbor.begin() + static_cast<std::ptrdiff_t>(bf.end(p)));
         BoundaryFiller f{p, o, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
-        int count = 0;
-        for (const auto& [dist, j] : seen) {
-          if (dist > best * (1 + 1e-9)) continue;
-          double G[3][3][3];
-          fit_kinematic_gradients(ns, bf, j, G);
-          for (int d = 0; d < 3; ++d) {
-            f.u[d] += ns.u[d][j], f.v[d] += ns.v[d][j], f.a[d] += ns.a[d][j];
-            for (int e = 0; e < D; ++e) {
-              const double de = o[e] - ns.x[e][j];
-              f.u[d] += G[0][d][e] * de;
-              f.v[d] += G[1][d][e] * de;
-              f.a[d] += G[2][d][e] * de;
-            }
-          }
-          ++count;
-        }
-        for (int d = 0; d < 3; ++d) f.u[d] /= count, f.v[d] /= count, f.a[d] /= count;
+        if (!extrapolate_from_nearest_visible(m, memory, candidates, o, f.u, f.v, f.a)) continue;
         out.fillers.push_back(f);
       }
     }

@@ -81,35 +81,25 @@ void add_extrapolation(const NodeSet& ns, std::uint32_t j, const double G[3][3][
 
 }  // namespace
 
-bool interpolate_new_node(const Model& m, const CrackMemory& memory, std::uint32_t p,
-                          const double G[3][3][3], const double offset[3], const Vec3& pos,
-                          double u[3], double v[3], double a[3]) {
+bool extrapolate_from_nearest_visible(const Model& m, const CrackMemory& memory,
+                                      const std::vector<std::uint32_t>& candidates, const Vec3& pos,
+                                      double u[3], double v[3], double a[3]) {
   const NodeSet& ns = m.nodes;
-  const BondFamilies& bf = m.bonds;
   for (int d = 0; d < 3; ++d) u[d] = v[d] = a[d] = 0;
-  const Vec3 xp{ns.x[0][p], ns.x[1][p], ns.x[2][p]};
-  // The nearest old nodes it can see when the parent is hidden, all of those at the nearest
-  // distance (to round-off): on a lattice several often are, and taking the first in bond order
-  // would give mirror-image children different fields. Their extrapolations are averaged.
   std::vector<std::pair<double, std::uint32_t>> seen;
-  if (sight_blocked(m, memory, xp, pos))
-    for (std::uint64_t k = bf.begin(p); k < bf.end(p); ++k) {
-      const std::uint32_t j = bf.neighbor[k];
-      if (!(ns.flags[j] & kActive)) continue;
-      const Vec3 xj{ns.x[0][j], ns.x[1][j], ns.x[2][j]};
-      if (!sight_blocked(m, memory, xj, pos)) seen.emplace_back(norm(sub(xj, pos)), j);
-    }
-  if (seen.empty()) {
-    add_extrapolation(ns, p, G, offset, u, v, a);
-    return false;
+  for (std::uint32_t j : candidates) {
+    if (!(ns.flags[j] & kActive)) continue;
+    const Vec3 xj{ns.x[0][j], ns.x[1][j], ns.x[2][j]};
+    if (!sight_blocked(m, memory, xj, pos)) seen.emplace_back(norm(sub(xj, pos)), j);
   }
+  if (seen.empty()) return false;
   double best = INFINITY;
   for (const auto& s : seen) best = std::min(best, s.first);
   int count = 0;
   for (const auto& [dist, j] : seen) {
     if (dist > best * (1 + 1e-9)) continue;
     double Gj[3][3][3];
-    fit_kinematic_gradients(ns, bf, j, Gj);
+    fit_kinematic_gradients(ns, m.bonds, j, Gj);
     double off[3] = {0, 0, 0};
     for (int e = 0; e < ns.dim; ++e) off[e] = pos[static_cast<std::size_t>(e)] - ns.x[e][j];
     add_extrapolation(ns, j, Gj, off, u, v, a);
@@ -117,6 +107,23 @@ bool interpolate_new_node(const Model& m, const CrackMemory& memory, std::uint32
   }
   for (int d = 0; d < 3; ++d) u[d] /= count, v[d] /= count, a[d] /= count;
   return true;
+}
+
+bool interpolate_new_node(const Model& m, const CrackMemory& memory, std::uint32_t p,
+                          const double G[3][3][3], const double offset[3], const Vec3& pos,
+                          double u[3], double v[3], double a[3]) {
+  const NodeSet& ns = m.nodes;
+  const BondFamilies& bf = m.bonds;
+  const Vec3 xp{ns.x[0][p], ns.x[1][p], ns.x[2][p]};
+  // Hidden from its parent: the nearest old nodes of the parent's family it can see.
+  if (sight_blocked(m, memory, xp, pos)) {
+    const std::vector<std::uint32_t> family(bf.neighbor.begin() + static_cast<std::ptrdiff_t>(bf.begin(p)),
+                                            bf.neighbor.begin() + static_cast<std::ptrdiff_t>(bf.end(p)));
+    if (extrapolate_from_nearest_visible(m, memory, family, pos, u, v, a)) return true;
+  }
+  for (int d = 0; d < 3; ++d) u[d] = v[d] = a[d] = 0;
+  add_extrapolation(ns, p, G, offset, u, v, a);
+  return false;
 }
 
 void inherit_loads_and_motions(Model& m, std::size_t n0, const std::vector<char>& is_parent,

@@ -38,6 +38,14 @@ bool interpolate_new_node(const Model& m, const CrackMemory& memory, std::uint32
                           const double G[3][3][3], const double offset[3], const Vec3& pos,
                           double u[3], double v[3], double a[3]);
 
+// u, v and a at `pos` from the nearest of `candidates` that are active and can see it: each one's
+// values plus its own gradient times the distance to it, averaged over those equally near (to
+// round-off; on a lattice several often are, and mirror-image nodes must get mirror-image
+// fields). Returns false, leaving u, v, a at zero, when none can see it.
+bool extrapolate_from_nearest_visible(const Model& m, const CrackMemory& memory,
+                                      const std::vector<std::uint32_t>& candidates, const Vec3& pos,
+                                      double u[3], double v[3], double a[3]);
+
 // Initial refinement: nodes created from a loaded or constrained parent (ns.parent, ids >= n0)
 // join its loads and, when inside the motion's region, its prescribed motions. A refined parent
 // stays in the lists only when it survives (method A).
