@@ -9,6 +9,7 @@
 
 #include "adapt/adaptor.hpp"
 #include "adapt/refine.hpp"
+#include "adapt/setup_zones.hpp"
 #include "input/deck_builder.hpp"
 #include "run/simulation.hpp"
 #include "setup/build_model.hpp"
@@ -1090,4 +1091,88 @@ TEST(Adapt, ChildrenOfAGivenCriticalStretchKeepItsFractureEnergy) {
 TEST(Adapt, LatticeCalibrationRemovesTheDeltaMLevelReflection) {
   EXPECT_GT(wave_levels_delta_m_reflection(2, true, false), 0.4);
   EXPECT_LT(wave_levels_delta_m_reflection(2, true, true), 0.2);
+}
+
+// The automatic profile refines, before the run, the pre-crack's front (not its mouth at the free
+// edge) and the regions driven by a moving prescribed motion (not held supports, nor a constant
+// offset), each widened by one horizon of visibility; named triggers leave both off.
+TEST(Adapt, TheProfileRefinesPreCrackFrontsAndDrivenPatchesAtSetUp) {
+  auto deck = [](const DeckBuilder& adapt) {
+    return test::glass_plate({0.0, 0.0}, {0.06, 0.03})
+        .append("cracks", DeckBuilder().set("segment", std::vector<std::vector<double>>{
+                                                           {0.0, 0.015}, {0.0121, 0.015}}))
+        .append("boundary_conditions", DeckBuilder()
+                                           .set("name", "driven")
+                                           .set("region", test::box({0.05, 0.029}, {0.06, 0.03}))
+                                           .set("velocity", test::Components{std::nullopt, "1.0"}))
+        .append("boundary_conditions", DeckBuilder()
+                                           .set("name", "held")
+                                           .set("region", test::box({0.05, 0.0}, {0.06, 0.001}))
+                                           .set("displacement", test::Components{"0", "0"}))
+        .append("boundary_conditions", DeckBuilder()
+                                           .set("name", "offset")
+                                           .set("region", test::box({0.0, 0.029}, {0.01, 0.03}))
+                                           .set("displacement", test::Components{"1e-6", "0"}))
+        .set("adapt", adapt)
+        .set("solver.end_time", 1e-7)
+        .build("set-up zones");
+  };
+  const double delta = 0.003;
+  const Vec3 tip{0.0121, 0.015, 0}, mouth{0.0, 0.015, 0};
+  const auto dist = [](const NodeSet& ns, std::size_t i, const Vec3& p) {
+    return std::hypot(ns.x[0][i] - p[0], ns.x[1][i] - p[1]);
+  };
+  {
+    const Model m = build_model(deck(DeckBuilder().set("max_level", 1)));
+    const NodeSet& ns = m.nodes;
+    std::size_t near_tip = 0, fine_near_tip = 0, driven = 0, fine_driven = 0;
+    for (std::size_t i = 0; i < ns.size(); ++i) {
+      if (!(ns.flags[i] & kActive)) continue;
+      const bool fine = ns.level[i] == 1;
+      if (dist(ns, i, tip) <= delta) ++near_tip, fine_near_tip += fine;
+      if (ns.x[0][i] >= 0.05 && ns.x[1][i] >= 0.029) ++driven, fine_driven += fine;
+      // Beyond two horizons and a cell (zone, visibility, children's offsets) of the front and of
+      // the driven strip everything is coarse: the mouth, the held support and the constant
+      // offset included.
+      const double h = 0.001;
+      const bool far_from_driven =
+          ns.x[0][i] < 0.05 - 2 * delta - h || ns.x[1][i] < 0.029 - 2 * delta - h;
+      if ((dist(ns, i, tip) > 2 * delta + h && far_from_driven) || dist(ns, i, mouth) <= delta)
+        EXPECT_EQ(ns.level[i], 0) << "node at " << ns.x[0][i] << ", " << ns.x[1][i];
+    }
+    EXPECT_GT(near_tip, 20u);
+    EXPECT_EQ(fine_near_tip, near_tip);
+    EXPECT_GT(driven, 10u);
+    EXPECT_EQ(fine_driven, driven);
+  }
+  // Named triggers: the thesis' explicit form, nothing refined before the run.
+  const Model plain = build_model(deck(DeckBuilder().set("max_level", 1).set("stretch_trigger", 0.5)));
+  for (std::size_t i = 0; i < plain.nodes.size(); ++i) EXPECT_EQ(plain.nodes.level[i], 0);
+}
+
+// A quadrilateral pre-crack cut into a 3D beam from its bottom face: only the edge inside the body
+// is a front (the edges outside the faces are not).
+TEST(Adapt, CrackTipZonesOfAQuadrilateralFollowItsFrontInsideTheBody) {
+  const Deck dk = DeckBuilder()
+                      .set("model.dimension", 3)
+                      .set("material.youngs_modulus", 30.0e9)
+                      .set("material.density", 2400.0)
+                      .set("material.fracture_energy", 5.0)
+                      .set("discretization.spacing", 0.001)
+                      .set("discretization.body.box.min", {0.0, 0.0, 0.0})
+                      .set("discretization.body.box.max", {0.04, 0.01, 0.004})
+                      .append("cracks", DeckBuilder().set(
+                                            "quad", std::vector<std::vector<double>>{
+                                                        {0.02, -0.001, -0.001}, {0.02, 0.003, -0.001},
+                                                        {0.02, 0.003, 0.005}, {0.02, -0.001, 0.005}}))
+                      .set("solver.end_time", 1e-7)
+                      .build("notched beam");
+  const Model m = build_model(dk);
+  const std::vector<InitialRefinement> zones = crack_tip_zones(m, 1);
+  ASSERT_FALSE(zones.empty());
+  for (const InitialRefinement& z : zones) {
+    EXPECT_DOUBLE_EQ(z.region.center[1], 0.003);
+    EXPECT_DOUBLE_EQ(z.region.center[0], 0.02);
+    EXPECT_EQ(z.region.kind, Shape::Kind::Sphere);
+  }
 }

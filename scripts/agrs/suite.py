@@ -14,9 +14,10 @@ usage: suite.py BUILD/periadapt OUT_DIR [--only a,b] [--repeat N] [--threads N] 
 --no-wall: leave the wall-time bound out of --check (CI: speed is measured by benchmarks, on a
            quiet machine, not asserted by tests).
 --adapt: sets a key of the adaptive runs' adapt section (repeatable), e.g. relax_sweeps=5.
---moving-patches: the adaptive runs also refine every moving boundary-condition region (an
-           expression of t) from the start: an initial_refinement zone each, with the
-           automatic profile's triggers restated (a zone switches the profile off).
+--moving-patches: the adaptive runs also refine every boundary-condition region given by an
+           expression of t from the start: an initial_refinement zone each, with the
+           automatic profile restated (a zone switches the profile off). The profile's own
+           refine_motions does this for every moving region since 2026-12-07.
 """
 import argparse
 import bisect
@@ -41,7 +42,8 @@ BOUNDS = {'path': 3.0, 'damage': 0.15, 'init': 0.05, 'nodes': 0.5, 'wall': 0.6}
 
 # The automatic profile's keys (docs/deck-reference.md, `adapt`), restated where a deck adds an
 # initial zone.
-PROFILE = 'stretch_trigger: 0.5, damage_trigger: true, interface_horizon: true, refine_loads: true'
+PROFILE = ('stretch_trigger: 0.5, damage_trigger: true, interface_horizon: true, refine_loads: true, '
+           'refine_crack_tips: true, refine_motions: true')
 
 
 def with_moving_patches(text):

@@ -38,6 +38,10 @@ struct AdaptSpec {
   bool enabled = false;
   NodeGeneration method = NodeGeneration::B;
   std::vector<InitialRefinement> initial;  // refined at t = 0
+  // Refined to max_level at t = 0 (adapt/setup_zones.hpp): the fronts of the deck's pre-cracks,
+  // and the regions driven by prescribed motions.
+  bool refine_crack_tips = false;
+  bool refine_motions = false;
   bool visibility = true;                  // initial zones widened by the visibility criterion
   int max_level = 1;
   HorizonScaling scaling = HorizonScaling::Delta;

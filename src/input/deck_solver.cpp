@@ -230,6 +230,8 @@ void parse_adapt(Section& top, Deck& dk) {
                           dk.solver == Deck::SolverType::Explicit;
     if (defaults) ad.stretch_fraction = kDefaultStretchTrigger;
     ad.damage_trigger = a->boolean("damage_trigger", defaults);
+    ad.refine_crack_tips = a->boolean("refine_crack_tips", defaults);
+    ad.refine_motions = a->boolean("refine_motions", defaults);
     // With the automatic triggers the zone follows the stretch field closely, and its interfaces
     // come near stressed free surfaces: without the correction a crack starts where an interface
     // meets a hole instead of at the hole's stress peak.

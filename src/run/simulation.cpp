@@ -1,5 +1,7 @@
 #include "run/simulation.hpp"
 
+#include "adapt/setup_zones.hpp"
+
 #include <omp.h>
 
 #include <chrono>
@@ -12,6 +14,7 @@
 #include <fmt/format.h>
 
 #include "adapt/adaptor.hpp"
+#include "adapt/setup_zones.hpp"
 #include "core/binary_archive.hpp"
 #include "input/deck_error.hpp"
 #include "model/model_state.hpp"
@@ -60,9 +63,21 @@ void remove_earlier_run_outputs(const std::string& dir) {
 // builds the same rows and reads their bonds from the checkpoint; an adaptive one, whose node
 // set is the checkpoint's, splits the checkpoint's rows afresh and reads its own. Runs refined
 // before they start hold their rows from their first pass on.
+// Whether the automatic profile's set-up zones (adapt/setup_zones.hpp) may refine before the run.
+bool refines_at_setup(const Deck& dk) {
+  const AdaptSpec& a = dk.adapt;
+  if (!a.enabled) return false;
+  if (a.refine_crack_tips && !dk.cracks.empty()) return true;
+  if (a.refine_motions)
+    for (const MotionSpec& mo : dk.motions)
+      for (const auto& c : mo.component)
+        if (c && component_moves(mo.kind == MotionSpec::Kind::Velocity, Expression(*c))) return true;
+  return false;
+}
+
 bool holds_rows_from_setup(const Deck& dk) {
   const AdaptSpec& a = dk.adapt;
-  const bool events_allow = !a.enabled || (a.initial.empty() && !a.coarsen &&
+  const bool events_allow = !a.enabled || (a.initial.empty() && !refines_at_setup(dk) && !a.coarsen &&
                                            a.relax_sweeps == 0 && !a.conserve_energy &&
                                            !a.interface_fit);
   // A surface correction is made at set-up from each row's owner; an event's correction window

@@ -1,6 +1,7 @@
 #include "setup/build_model.hpp"
 
 #include "adapt/refine.hpp"
+#include "adapt/setup_zones.hpp"
 #include "discretize/surface_correction.hpp"
 
 #include <fmt/format.h>
@@ -255,7 +256,8 @@ Model build_model(const Deck& dk, const FamilyBuild& families) {
         throw DeckError(dk.file, 0, 0, "initial_conditions",
                         "an initial field is not finite at node " + std::to_string(i));
   ns.sync_all_current();
-  if (!dk.adapt.initial.empty()) apply_initial_refinement(m, dk.adapt);
+  if (AdaptSpec spec = dk.adapt; !(spec.initial = setup_zones(m, dk.adapt)).empty())
+    apply_initial_refinement(m, spec);
   return m;
 }
 

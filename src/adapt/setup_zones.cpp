@@ -1,0 +1,105 @@
+#include "adapt/setup_zones.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/cell_grid.hpp"
+
+namespace periadapt {
+
+namespace {
+
+Vec3 along(const Vec3& p, const Vec3& dir, double s) {
+  return {p[0] + s * dir[0], p[1] + s * dir[1], p[2] + s * dir[2]};
+}
+
+Vec3 unit(const Vec3& v) {
+  const double n = std::sqrt(dot(v, v));
+  return n > 0 ? Vec3{v[0] / n, v[1] / n, v[2] / n} : Vec3{0, 0, 0};
+}
+
+}  // namespace
+
+std::vector<InitialRefinement> crack_tip_zones(const Model& m, int level) {
+  const NodeSet& ns = m.nodes;
+  std::vector<InitialRefinement> zones;
+  if (m.cracks.empty() || ns.size() == 0) return zones;
+  double h = 0, delta = 0;
+  for (std::size_t i = 0; i < ns.size(); ++i)
+    if (ns.flags[i] & kActive) h = std::max(h, ns.spacing[i]), delta = std::max(delta, ns.horizon[i]);
+  CellGrid grid(ns.dim, {ns.x[0].data(), ns.x[1].data(), ns.x[2].data()}, ns.size(), h);
+  auto body_at = [&](const Vec3& p) {
+    bool found = false;
+    grid.for_each_within(p, h * (1 + 1e-9), [&](std::uint32_t j, double) {
+      found = found || (ns.flags[j] & kActive);
+    });
+    return found;
+  };
+  // A front point is kept where the body goes on beyond it along `out` (the crack's own plane,
+  // pointing away from the crack).
+  auto add = [&](const Vec3& p, const Vec3& out) {
+    if (!body_at(along(p, out, h))) return;
+    InitialRefinement z;
+    z.level = level;
+    z.region.kind = ns.dim == 3 ? Shape::Kind::Sphere : Shape::Kind::Disk;
+    z.region.center = p;
+    z.region.radius = delta;
+    zones.push_back(std::move(z));
+  };
+  for (const PreCrack& c : m.cracks) {
+    if (!c.planar3d) {
+      const Vec3 d = unit(sub(c.points[1], c.points[0]));
+      add(c.points[1], d);
+      add(c.points[0], Vec3{-d[0], -d[1], -d[2]});
+      continue;
+    }
+    Vec3 centre{0, 0, 0};
+    for (const Vec3& q : c.points)
+      for (int k = 0; k < 3; ++k) centre[k] += 0.25 * q[k];
+    for (int e = 0; e < 4; ++e) {
+      const Vec3 a = c.points[e], b = c.points[(e + 1) % 4];
+      const Vec3 t = sub(b, a);
+      const double len = std::sqrt(dot(t, t));
+      if (!(len > 0)) continue;
+      const Vec3 tu = unit(t);
+      // Outward in the quad's plane: from the centre to the edge, less its part along the edge.
+      const Vec3 ca = sub(a, centre);
+      const double s = dot(ca, tu);
+      const Vec3 out = unit(Vec3{ca[0] - s * tu[0], ca[1] - s * tu[1], ca[2] - s * tu[2]});
+      const int n = std::max(1, static_cast<int>(std::ceil(len / h)));
+      for (int k = 0; k <= n; ++k) add(along(a, tu, len * k / n), out);
+    }
+  }
+  return zones;
+}
+
+bool component_moves(bool velocity, const Expression& c) {
+  return velocity ? !(c.is_constant() && c(0, 0, 0, 0) == 0.0) : c.depends_on_time();
+}
+
+std::vector<InitialRefinement> driven_patch_zones(const Model& m, int level) {
+  std::vector<InitialRefinement> zones;
+  for (const PrescribedMotion& pm : m.motions) {
+    bool moves = false;
+    for (const auto& c : pm.component)
+      moves = moves || (c && component_moves(pm.kind == PrescribedMotion::Kind::Velocity, *c));
+    if (!moves || pm.nodes.empty()) continue;
+    InitialRefinement z;
+    z.level = level;
+    z.region = pm.region;
+    zones.push_back(std::move(z));
+  }
+  return zones;
+}
+
+std::vector<InitialRefinement> setup_zones(const Model& m, const AdaptSpec& spec) {
+  std::vector<InitialRefinement> zones = spec.initial;
+  if (!spec.enabled) return zones;
+  if (spec.refine_crack_tips)
+    for (InitialRefinement& z : crack_tip_zones(m, spec.max_level)) zones.push_back(std::move(z));
+  if (spec.refine_motions)
+    for (InitialRefinement& z : driven_patch_zones(m, spec.max_level)) zones.push_back(std::move(z));
+  return zones;
+}
+
+}  // namespace periadapt
