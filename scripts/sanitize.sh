@@ -7,7 +7,11 @@
 # Three unit tests that repeat smaller ones' code on larger grids stay out as well (30-50 s each
 # here): the LPS stress with the moments correction (the PMB stress test runs the correction and
 # cli_vtu_stress the LPS stress), the isotropic expansion at m = 6 (m = 3 runs) and the wave through
-# an interface-horizon patch (every adaptive test runs the correction).
+# an interface-horizon patch (every adaptive test runs the correction). So do three physics tests of
+# 20-40 s each under the sanitizers whose code smaller tests run (the uniaxial P-wave modulus,
+# Bobaru's arrival times, the overlay's sqrt(n) strength) and
+# cli_bond_laws (the laws' unit and conformance tests run here); cli_restart kills and restarts
+# only its first two decks here (PERIADAPT_SANITIZE, below).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 # Unity batches and line-table debug info (enough for the reports' stack traces) keep this
@@ -26,4 +30,4 @@ export PERIADAPT_SANITIZE=1  # tests that cap the address space skip the cap (AS
 # 18.4 s waiting passively). The wait policy changes no result.
 export OMP_WAIT_POLICY=PASSIVE
 ctest --test-dir build-asan --output-on-failure -j"$(nproc)" --timeout 900 \
-  -E "validation_(grid_orientation|pdro_sent|sent_levels|kalthoff_winkler|beam_3pb_lps|density_jump)|Adapt.LatticeCalibrationRemoves|cli_mpi|Stress.LpsStressIsClassicalUpToTheSurface|EnergyDensity.IsotropicExpansionMatchesClassicalAtM6|Adapt.InterfaceHorizonLowersTheLocalEnergyLoss"
+  -E "validation_(grid_orientation|pdro_sent|sent_levels|kalthoff_winkler|beam_3pb_lps|density_jump)|Adapt.LatticeCalibrationRemoves|cli_mpi|cli_bond_laws|Stress.LpsStressIsClassicalUpToTheSurface|EnergyDensity.IsotropicExpansionMatchesClassicalAtM6|Adapt.InterfaceHorizonLowersTheLocalEnergyLoss|EnergyDensity.UniaxialStrainGivesBondBasedPWaveModulus|Dynamics.BobaruWaveArrivalTimes|Pdro.OverlayRaisesTheStrength"

@@ -147,10 +147,14 @@ int check(const std::string& path, const std::vector<std::string>& overrides,
       trig += std::string(trig.empty() ? "" : " and ") +
               fmt::format("energy W >= {:.3g} W_max", *a.energy_fraction);
     if (a.damage_trigger) trig += std::string(trig.empty() ? "" : " and ") + "damage growth";
-    fmt::print("adapt           method {} to level {}, {}-scaling, {}, from t = {:.4g} s{}\n",
+    const char* setup = a.refine_crack_tips && a.refine_motions ? ", pre-crack fronts and driven patches refined at set-up"
+                        : a.refine_crack_tips                  ? ", pre-crack fronts refined at set-up"
+                        : a.refine_motions                     ? ", driven patches refined at set-up"
+                                                               : "";
+    fmt::print("adapt           method {} to level {}, {}-scaling, {}, from t = {:.4g} s{}{}\n",
                a.method == NodeGeneration::A ? "A" : "B", a.max_level,
                a.scaling == HorizonScaling::Delta ? "delta" : a.scaling == HorizonScaling::M ? "m" : "delta-m",
-               trig, a.start_time, a.interface_horizon ? ", interface-horizon correction" : "");
+               trig, a.start_time, a.interface_horizon ? ", interface-horizon correction" : "", setup);
     // The quadrature's bulk bond stiffness at each level's m: levels that differ in it meet with
     // an impedance jump (a wave reflects) unless the micromoduli are calibrated to it.
     auto stiffness = [&](int l) {
