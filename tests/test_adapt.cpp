@@ -1094,8 +1094,8 @@ TEST(Adapt, LatticeCalibrationRemovesTheDeltaMLevelReflection) {
 }
 
 // The automatic profile refines, before the run, the pre-crack's front (not its mouth at the free
-// edge) and the regions driven by a moving prescribed motion (not held supports, nor a constant
-// offset), each widened by one horizon of visibility; named triggers leave both off.
+// edge) and the regions driven by a moving prescribed motion (not held supports, a zero velocity
+// or a constant offset), each widened by one horizon of visibility; named triggers leave both off.
 TEST(Adapt, TheProfileRefinesPreCrackFrontsAndDrivenPatchesAtSetUp) {
   auto deck = [](const DeckBuilder& adapt) {
     return test::glass_plate({0.0, 0.0}, {0.06, 0.03})
@@ -1109,6 +1109,10 @@ TEST(Adapt, TheProfileRefinesPreCrackFrontsAndDrivenPatchesAtSetUp) {
                                            .set("name", "held")
                                            .set("region", test::box({0.05, 0.0}, {0.06, 0.001}))
                                            .set("displacement", test::Components{"0", "0"}))
+        .append("boundary_conditions", DeckBuilder()
+                                           .set("name", "still")
+                                           .set("region", test::box({0.0, 0.0}, {0.01, 0.001}))
+                                           .set("velocity", test::Components{"0", "0"}))
         .append("boundary_conditions", DeckBuilder()
                                            .set("name", "offset")
                                            .set("region", test::box({0.0, 0.029}, {0.01, 0.03}))
@@ -1132,22 +1136,35 @@ TEST(Adapt, TheProfileRefinesPreCrackFrontsAndDrivenPatchesAtSetUp) {
       if (dist(ns, i, tip) <= delta) ++near_tip, fine_near_tip += fine;
       if (ns.x[0][i] >= 0.05 && ns.x[1][i] >= 0.029) ++driven, fine_driven += fine;
       // Beyond two horizons and a cell (zone, visibility, children's offsets) of the front and of
-      // the driven strip everything is coarse: the mouth, the held support and the constant
-      // offset included.
+      // the driven strip everything is coarse: the mouth, the held support, the zero velocity and
+      // the constant offset included.
       const double h = 0.001;
       const bool far_from_driven =
           ns.x[0][i] < 0.05 - 2 * delta - h || ns.x[1][i] < 0.029 - 2 * delta - h;
-      if ((dist(ns, i, tip) > 2 * delta + h && far_from_driven) || dist(ns, i, mouth) <= delta)
+      if ((dist(ns, i, tip) > 2 * delta + h && far_from_driven) || dist(ns, i, mouth) <= delta) {
         EXPECT_EQ(ns.level[i], 0) << "node at " << ns.x[0][i] << ", " << ns.x[1][i];
+      }
     }
     EXPECT_GT(near_tip, 20u);
     EXPECT_EQ(fine_near_tip, near_tip);
     EXPECT_GT(driven, 10u);
     EXPECT_EQ(fine_driven, driven);
   }
-  // Named triggers: the thesis' explicit form, nothing refined before the run.
+  // Named triggers: the thesis' explicit form, nothing refined before the run; nor with a start
+  // time. With adapt.region the zones stay inside it (the driven strip, not the front).
   const Model plain = build_model(deck(DeckBuilder().set("max_level", 1).set("stretch_trigger", 0.5)));
   for (std::size_t i = 0; i < plain.nodes.size(); ++i) EXPECT_EQ(plain.nodes.level[i], 0);
+  const Model later = build_model(deck(DeckBuilder().set("max_level", 1).set("start_time", 1e-8)));
+  for (std::size_t i = 0; i < later.nodes.size(); ++i) EXPECT_EQ(later.nodes.level[i], 0);
+  const Model inside = build_model(
+      deck(DeckBuilder().set("max_level", 1).set("region", test::box({0.04, 0.0}, {0.06, 0.03}))));
+  std::size_t refined_inside = 0;
+  for (std::size_t i = 0; i < inside.nodes.size(); ++i) {
+    if (!(inside.nodes.flags[i] & kActive) || inside.nodes.level[i] == 0) continue;
+    ++refined_inside;
+    EXPECT_GE(inside.nodes.x[0][i], 0.04);
+  }
+  EXPECT_GT(refined_inside, 10u);
 }
 
 // A quadrilateral pre-crack cut into a 3D beam from its bottom face: only the edge inside the body
@@ -1159,6 +1176,7 @@ TEST(Adapt, CrackTipZonesOfAQuadrilateralFollowItsFrontInsideTheBody) {
                       .set("material.density", 2400.0)
                       .set("material.fracture_energy", 5.0)
                       .set("discretization.spacing", 0.001)
+                      .set("discretization.horizon_factor", 3.0)
                       .set("discretization.body.box.min", {0.0, 0.0, 0.0})
                       .set("discretization.body.box.max", {0.04, 0.01, 0.004})
                       .append("cracks", DeckBuilder().set(
@@ -1168,11 +1186,16 @@ TEST(Adapt, CrackTipZonesOfAQuadrilateralFollowItsFrontInsideTheBody) {
                       .set("solver.end_time", 1e-7)
                       .build("notched beam");
   const Model m = build_model(dk);
+  // The front edge, z from -1 to 5 mm, sampled every spacing: the points at z = 0 ... 4 mm have the
+  // body beyond them; the other three edges lie outside the faces.
   const std::vector<InitialRefinement> zones = crack_tip_zones(m, 1);
-  ASSERT_FALSE(zones.empty());
-  for (const InitialRefinement& z : zones) {
-    EXPECT_DOUBLE_EQ(z.region.center[1], 0.003);
-    EXPECT_DOUBLE_EQ(z.region.center[0], 0.02);
-    EXPECT_EQ(z.region.kind, Shape::Kind::Sphere);
+  ASSERT_EQ(zones.size(), 5u);
+  for (std::size_t k = 0; k < zones.size(); ++k) {
+    const Shape& z = zones[k].region;
+    EXPECT_EQ(z.kind, Shape::Kind::Sphere);
+    EXPECT_DOUBLE_EQ(z.center[0], 0.02);
+    EXPECT_DOUBLE_EQ(z.center[1], 0.003);
+    EXPECT_NEAR(z.center[2], 0.001 * static_cast<double>(k), 1e-12);
+    EXPECT_NEAR(z.radius, 0.003, 1e-12);  // one coarse horizon (m = 3)
   }
 }

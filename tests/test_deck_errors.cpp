@@ -279,6 +279,8 @@ TEST(DeckErrors, EveryLoaderCheckRefusesItsCaseNamingTheKey) {
       {{"adapt={energy_trigger: 0.5, interface_stretch: level}"}, "adapt.interface_stretch", "interface_horizon"},
       {{"adapt={max_level: 1, interface_stretch: both}"}, "adapt.interface_stretch", "allowed"},
       {{"adapt={energy_trigger: 0.5, method: A, fill_boundary_cells: true}"}, "adapt.fill_boundary_cells", "method B"},
+      {{"adapt={initial_refinement: [{region: {all: true}, level: 1}], refine_crack_tips: true}"},
+       "adapt.refine_crack_tips", "trigger"},
       {{"adapt={scaling: delta_m, m_per_level: [4, 3]}"}, "adapt.m_per_level", "level 0"},
       {{"adapt={method: A, refine_loads: true, energy_trigger: 0.5}"}, "adapt.refine_loads", "method a"},
       {{"adapt={method: A, coarsen: true, energy_trigger: 0.5}"}, "adapt.coarsen", "method"},

@@ -18,6 +18,7 @@ enum class HorizonScaling {
 struct InitialRefinement {
   Shape region;
   int level = 1;
+  std::optional<Shape> within;  // refined only inside this too (the profile's zones: adapt.region)
 };
 
 // Node generation (thesis 3.2.3, Fig. 3.5).

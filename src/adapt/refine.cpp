@@ -234,12 +234,15 @@ void apply_initial_refinement(Model& m, const AdaptSpec& spec) {
   for (int level = 0; level < top; ++level) {
     std::vector<char> want(ns.size(), 0);
     std::vector<std::uint32_t> ids;
+    std::vector<const Shape*> within;  // per id: where its visibility may reach (null: anywhere)
     for (std::size_t i = 0; i < ns.size(); ++i) {
       if (!(ns.flags[i] & kActive) || ns.level[i] != level) continue;
       const Vec3 p{ns.x[0][i], ns.x[1][i], ns.x[2][i]};
       for (const auto& z : spec.initial)
-        if (z.level > level && z.region.contains(p, 1e-9 * ns.spacing[i])) {
+        if (z.level > level && z.region.contains(p, 1e-9 * ns.spacing[i]) &&
+            (!z.within || z.within->contains(p, 1e-9 * ns.spacing[i]))) {
           ids.push_back(static_cast<std::uint32_t>(i));
+          within.push_back(z.within ? &*z.within : nullptr);
           break;
         }
     }
@@ -254,13 +257,17 @@ void apply_initial_refinement(Model& m, const AdaptSpec& spec) {
       for (std::uint32_t i : ids) mark[i] = 1;
       // Nodes with prescribed motions are pulled in only when inside a zone themselves.
       if (spec.visibility)
-        for (std::uint32_t i : ids)
+        for (std::size_t r = 0; r < ids.size(); ++r) {
+          const std::uint32_t i = ids[r];
           grid.for_each_within({ns.x[0][i], ns.x[1][i], ns.x[2][i]}, ns.horizon[i] * (1 + 1e-12),
                                [&](std::uint32_t j, double) {
                                  if ((ns.flags[j] & kActive) && !(ns.flags[j] & kBoundary) &&
-                                     ns.level[j] <= level)
+                                     ns.level[j] <= level &&
+                                     (!within[r] || within[r]->contains({ns.x[0][j], ns.x[1][j], ns.x[2][j]},
+                                                                        1e-9 * ns.spacing[j])))
                                    mark[j] = 1;
                                });
+        }
       parents.clear();
       for (std::size_t i = 0; i < ns.size(); ++i)
         if (mark[i]) parents.push_back(static_cast<std::uint32_t>(i));

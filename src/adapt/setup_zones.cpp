@@ -30,7 +30,9 @@ std::vector<InitialRefinement> crack_tip_zones(const Model& m, int level) {
   CellGrid grid(ns.dim, {ns.x[0].data(), ns.x[1].data(), ns.x[2].data()}, ns.size(), h);
   auto body_at = [&](const Vec3& p) {
     bool found = false;
-    grid.for_each_within(p, h * (1 + 1e-9), [&](std::uint32_t j, double) {
+    // 0.9 h: above the farthest an interior point lies from its nearest node (sqrt(3)/2 h), below
+    // the spacing at which a surface node can sit from a probe beyond the surface.
+    grid.for_each_within(p, 0.9 * h, [&](std::uint32_t j, double) {
       found = found || (ns.flags[j] & kActive);
     });
     return found;
@@ -53,21 +55,24 @@ std::vector<InitialRefinement> crack_tip_zones(const Model& m, int level) {
       add(c.points[0], Vec3{-d[0], -d[1], -d[2]});
       continue;
     }
-    Vec3 centre{0, 0, 0};
-    for (const Vec3& q : c.points)
-      for (int k = 0; k < 3; ++k) centre[k] += 0.25 * q[k];
+    // Outward in the quad's plane: edge direction x normal, the normal taken from the diagonals so
+    // that it follows the vertices' winding (a dart-shaped quad included).
+    const Vec3 d1 = sub(c.points[2], c.points[0]), d2 = sub(c.points[3], c.points[1]);
+    const Vec3 normal{d1[1] * d2[2] - d1[2] * d2[1], d1[2] * d2[0] - d1[0] * d2[2],
+                      d1[0] * d2[1] - d1[1] * d2[0]};
     for (int e = 0; e < 4; ++e) {
       const Vec3 a = c.points[e], b = c.points[(e + 1) % 4];
       const Vec3 t = sub(b, a);
       const double len = std::sqrt(dot(t, t));
       if (!(len > 0)) continue;
       const Vec3 tu = unit(t);
-      // Outward in the quad's plane: from the centre to the edge, less its part along the edge.
-      const Vec3 ca = sub(a, centre);
-      const double s = dot(ca, tu);
-      const Vec3 out = unit(Vec3{ca[0] - s * tu[0], ca[1] - s * tu[1], ca[2] - s * tu[2]});
+      const Vec3 out = unit(Vec3{tu[1] * normal[2] - tu[2] * normal[1],
+                                 tu[2] * normal[0] - tu[0] * normal[2],
+                                 tu[0] * normal[1] - tu[1] * normal[0]});
+      if (dot(out, out) == 0) continue;
+      // Each corner once: an edge's points from its start up to, not including, its end.
       const int n = std::max(1, static_cast<int>(std::ceil(len / h)));
-      for (int k = 0; k <= n; ++k) add(along(a, tu, len * k / n), out);
+      for (int k = 0; k < n; ++k) add(along(a, tu, len * k / n), out);
     }
   }
   return zones;
@@ -94,11 +99,14 @@ std::vector<InitialRefinement> driven_patch_zones(const Model& m, int level) {
 
 std::vector<InitialRefinement> setup_zones(const Model& m, const AdaptSpec& spec) {
   std::vector<InitialRefinement> zones = spec.initial;
-  if (!spec.enabled) return zones;
+  // Nothing is refined before start_time, nor outside the deck's adapt.region.
+  if (!spec.enabled || spec.start_time > 0) return zones;
+  const std::size_t own = zones.size();
   if (spec.refine_crack_tips)
     for (InitialRefinement& z : crack_tip_zones(m, spec.max_level)) zones.push_back(std::move(z));
   if (spec.refine_motions)
     for (InitialRefinement& z : driven_patch_zones(m, spec.max_level)) zones.push_back(std::move(z));
+  for (std::size_t k = own; k < zones.size(); ++k) zones[k].within = spec.region;
   return zones;
 }
 

@@ -20,7 +20,7 @@ namespace periadapt {
 
 // One ball (2D: disk) of one coarse horizon per front point: a segment's end, or points one
 // spacing apart along a quadrilateral's edge, where the body goes on beyond the crack (a node
-// within one spacing of the point one spacing further out in the crack's plane); the mouth of
+// within 0.9 spacings of the point one spacing further out in the crack's plane); the mouth of
 // a notch cut from a free surface has none. Each asks for `level`.
 std::vector<InitialRefinement> crack_tip_zones(const Model& m, int level);
 
@@ -32,7 +32,8 @@ std::vector<InitialRefinement> driven_patch_zones(const Model& m, int level);
 // or a displacement that changes in time.
 bool component_moves(bool velocity, const Expression& component);
 
-// The deck's own initial zones and those of the options above that `spec` enables.
+// The deck's own initial zones and those of the options above that `spec` enables (inside
+// spec.region; none with a start time).
 std::vector<InitialRefinement> setup_zones(const Model& m, const AdaptSpec& spec);
 
 }  // namespace periadapt

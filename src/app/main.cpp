@@ -19,6 +19,7 @@
 #include "run/static_run.hpp"
 #include "run/relaxation_run.hpp"
 #include "adapt/refine.hpp"
+#include "adapt/setup_zones.hpp"
 #include "discretize/lattice_moment.hpp"
 #include "studies/registry.hpp"
 #include "input/deck.hpp"
@@ -147,10 +148,12 @@ int check(const std::string& path, const std::vector<std::string>& overrides,
       trig += std::string(trig.empty() ? "" : " and ") +
               fmt::format("energy W >= {:.3g} W_max", *a.energy_fraction);
     if (a.damage_trigger) trig += std::string(trig.empty() ? "" : " and ") + "damage growth";
-    const char* setup = a.refine_crack_tips && a.refine_motions ? ", pre-crack fronts and driven patches refined at set-up"
-                        : a.refine_crack_tips                  ? ", pre-crack fronts refined at set-up"
-                        : a.refine_motions                     ? ", driven patches refined at set-up"
-                                                               : "";
+    // The set-up zones this deck has (the model was built with them).
+    std::string setup;
+    const std::size_t fronts = a.refine_crack_tips && a.start_time <= 0 ? crack_tip_zones(m, a.max_level).size() : 0;
+    const std::size_t patches = a.refine_motions && a.start_time <= 0 ? driven_patch_zones(m, a.max_level).size() : 0;
+    if (fronts + patches > 0)
+      setup = fmt::format(", refined at set-up: {} pre-crack front points, {} driven regions", fronts, patches);
     fmt::print("adapt           method {} to level {}, {}-scaling, {}, from t = {:.4g} s{}{}\n",
                a.method == NodeGeneration::A ? "A" : "B", a.max_level,
                a.scaling == HorizonScaling::Delta ? "delta" : a.scaling == HorizonScaling::M ? "m" : "delta-m",

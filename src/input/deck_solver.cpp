@@ -293,6 +293,10 @@ void parse_adapt(Section& top, Deck& dk) {
       a->fail("", "give at least one trigger (stretch_trigger: fraction of the critical stretch, "
                   "energy_trigger: fraction of W_max, damage_trigger: true) or an "
                   "initial_refinement zone");
+    for (const char* key : {"refine_crack_tips", "refine_motions"})
+      if (a->has(key) && a->boolean(key, false) && !ad.enabled)
+        a->fail(key, "refines before the run for a run's triggers (explicit runs); without a "
+                     "trigger give the zone as initial_refinement");
     if (ad.relax_sweeps > 0 && !ad.enabled)
       a->fail("relax_sweeps", "relaxes the events of a run's triggers; initial_refinement zones "
                               "are made before any field exists (give a trigger, or leave it out)");

@@ -14,7 +14,10 @@ RefinementForecast forecast_refinement(const Deck& dk, double max_bond_evaluatio
   RefinementForecast fc;
   const AdaptSpec& spec = dk.adapt;
   if (!spec.enabled || !spec.stretch_fraction || dk.solver != Deck::SolverType::Explicit) return fc;
-  Model m = build_model(dk);
+  // The coarse grid: the profile's set-up zones (which `check` reports as initial zones) left out.
+  Deck coarse = dk;
+  coarse.adapt.refine_crack_tips = coarse.adapt.refine_motions = false;
+  Model m = build_model(coarse);
   m.damage_enabled = false;
   const TimeStepChoice ts = choose_time_step(dk, m);
   // The coarse grid's own stable step: nothing is refined here.

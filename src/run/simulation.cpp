@@ -56,17 +56,10 @@ void remove_earlier_run_outputs(const std::string& dir) {
   }
 }
 
-// A distributed explicit run whose ranks hold their own bond rows from the set-up on
-// (parallel/held_rows.hpp): owned integration, and nothing that reads another rank's rows
-// (the overlay, which re-checks a bond over both ends' families; of refinement, what
-// Adaptor::rows_can_be_held names). A restart
-// builds the same rows and reads their bonds from the checkpoint; an adaptive one, whose node
-// set is the checkpoint's, splits the checkpoint's rows afresh and reads its own. Runs refined
-// before they start hold their rows from their first pass on.
 // Whether the automatic profile's set-up zones (adapt/setup_zones.hpp) may refine before the run.
 bool refines_at_setup(const Deck& dk) {
   const AdaptSpec& a = dk.adapt;
-  if (!a.enabled) return false;
+  if (!a.enabled || a.start_time > 0) return false;
   if (a.refine_crack_tips && !dk.cracks.empty()) return true;
   if (a.refine_motions)
     for (const MotionSpec& mo : dk.motions)
@@ -75,6 +68,13 @@ bool refines_at_setup(const Deck& dk) {
   return false;
 }
 
+// A distributed explicit run whose ranks hold their own bond rows from the set-up on
+// (parallel/held_rows.hpp): owned integration, and nothing that reads another rank's rows
+// (the overlay, which re-checks a bond over both ends' families; of refinement, what
+// Adaptor::rows_can_be_held names). A restart
+// builds the same rows and reads their bonds from the checkpoint; an adaptive one, whose node
+// set is the checkpoint's, splits the checkpoint's rows afresh and reads its own. Runs refined
+// before they start hold their rows from their first pass on.
 bool holds_rows_from_setup(const Deck& dk) {
   const AdaptSpec& a = dk.adapt;
   const bool events_allow = !a.enabled || (a.initial.empty() && !refines_at_setup(dk) && !a.coarsen &&

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "core/bond_families.hpp"
+#include "core/expression.hpp"
 #include "core/node_set.hpp"
 #include "input/deck_error.hpp"
 
@@ -49,6 +50,49 @@ double region_measure(const Shape& s, const Box& body, int dim) {
   return v;
 }
 
+// Coarse cells the automatic profile refines before the run (adapt/setup_zones.hpp), over-counted:
+// every motion's region unless a component is a constant zero velocity or a constant
+// displacement, and a ball of two coarse horizons (zone and visibility) per pre-crack end or per
+// spacing along a quadrilateral's perimeter.
+double setup_zone_cells(const Deck& dk, double nodes) {
+  const AdaptSpec& a = dk.adapt;
+  const int D = dk.dim;
+  const double dx = dk.grid.spacing;
+  if (!a.enabled || a.start_time > 0 || !(dx > 0)) return 0;
+  double cells = 0;
+  if (a.refine_motions)
+    for (const MotionSpec& mo : dk.motions) {
+      bool fixed = true;
+      for (const auto& c : mo.component) {
+        if (!c) continue;
+        try {
+          const Expression ex(*c);
+          fixed = fixed && ex.is_constant() &&
+                  (mo.kind == MotionSpec::Kind::Displacement || ex(0, 0, 0, 0) == 0.0);
+        } catch (const std::exception&) {
+          fixed = false;
+        }
+      }
+      if (!fixed) cells += region_measure(mo.region, dk.grid.body, D) / std::pow(dx, D);
+    }
+  if (a.refine_crack_tips) {
+    const double r = 2 * dk.horizon;
+    const double ball = D == 3 ? 4.0 / 3.0 * M_PI * r * r * r : D == 2 ? M_PI * r * r : 2 * r;
+    for (const PreCrack& c : dk.cracks) {
+      double points = 2;
+      if (c.planar3d) {
+        points = 0;
+        for (int k = 0; k < 4; ++k) {
+          const Vec3 t = sub(c.points[(k + 1) % 4], c.points[k]);
+          points += std::ceil(std::sqrt(dot(t, t)) / dx);
+        }
+      }
+      cells += points * ball / std::pow(dx, D);
+    }
+  }
+  return std::min(cells, nodes);
+}
+
 }  // namespace
 
 MemoryEstimate estimate_memory(const Deck& dk) {
@@ -73,6 +117,7 @@ MemoryEstimate estimate_memory(const Deck& dk) {
     const double cells = region_measure(z.region, body, D) / std::pow(dx, D);
     added = std::max(added, std::min(cells, nodes) * (std::pow(2.0, D * z.level) - 1));
   }
+  added = std::max(added, setup_zone_cells(dk, nodes) * (std::pow(2.0, D * dk.adapt.max_level) - 1));
   e.nodes = nodes + added;
   // Bonds per node: the horizon ball (widened by half a cell diagonal for the exact-area rules)
   // over the cell measure, at the largest m any level has.
