@@ -92,6 +92,7 @@ std::vector<std::uint32_t> rebuild_families(Model& m, const CrackMemory& mem,
   // A surface correction multiplies the quadrature's factors: rows it corrects again must start
   // from a fresh search, not from their patched (corrected) entries.
   if (corrected) appended_only = false;
+  double member_reach = 0;  // no member lies farther from its row (after the event)
   if (!global) {
     // Largest search radius of any active node (the radius grows with both arguments).
     double hmax = 0, dxmax = 0;
@@ -104,6 +105,7 @@ std::vector<std::uint32_t> rebuild_families(Model& m, const CrackMemory& mem,
       if (i < changed.size() && changed[i]) ch.push_back(static_cast<std::uint32_t>(i));
     }
     const double rmax = std::max(quadrature_search_radius(m.quadrature.rule, D, hmax, dxmax), 1e-300);
+    member_reach = rmax * (1 + 1e-9);
     // A cell list over the nodes near the changed ones only: the event's cost follows its region.
     CellGrid grid(D, {ns.x[0].data(), ns.x[1].data(), ns.x[2].data()},
                   active_nodes_near(ns, ch, rmax * (1 + 1e-9)), rmax);
@@ -236,7 +238,8 @@ std::vector<std::uint32_t> rebuild_families(Model& m, const CrackMemory& mem,
   // (a changed node puts every row that reaches it into the window).
   mark_unbreakable_bonds(ns, bf, &rebuild);
   for (std::uint32_t i : recorrected) rebuild[i] = 1;
-  index_pairs(bf, ns, m.formulation.dual_horizon, m.formulation.state_based(), &rebuild);
+  index_pairs(bf, ns, m.formulation.dual_horizon, m.formulation.state_based(), &rebuild,
+              global ? 0.0 : member_reach);
   update_damage_weights(ns, bf, &rebuild);
   std::vector<std::uint32_t> rows;
   for (std::size_t i = 0; i < ns.size(); ++i)

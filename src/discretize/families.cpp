@@ -212,6 +212,24 @@ std::vector<std::vector<QuadratureEntry>> quadrature_factors(
   return out;
 }
 
+std::vector<std::uint32_t> nodes_within(const NodeSet& nodes, const std::vector<std::uint32_t>& seeds,
+                                        double radius) {
+  std::vector<char> in(nodes.size(), 0);
+  for (std::uint32_t i : seeds) in[i] = 1;
+  if (!seeds.empty()) {
+    const double r = std::max(radius, 1e-300);
+    const CellGrid grid(nodes.dim, {nodes.x[0].data(), nodes.x[1].data(), nodes.x[2].data()},
+                        active_nodes_near(nodes, seeds, r), r);
+    for (std::uint32_t c : seeds)
+      grid.for_each_within({nodes.x[0][c], nodes.x[1][c], nodes.x[2][c]}, r,
+                           [&](std::uint32_t j, double) { in[j] = 1; });
+  }
+  std::vector<std::uint32_t> out;
+  for (std::size_t i = 0; i < in.size(); ++i)
+    if (in[i]) out.push_back(static_cast<std::uint32_t>(i));
+  return out;
+}
+
 namespace {
 
 bool searched(const NodeSet& nodes, const std::vector<char>* rows, std::size_t i) {
@@ -422,61 +440,83 @@ void build_transpose(BondFamilies& bf) {
     }
 }
 
+namespace {
+
+// Row i's far-end factors (each bond's factor in its far end's row, found by bisection there:
+// rows are sorted by neighbour id), or none where they all equal its own. Only rows with a far
+// end of another horizon or cell size are searched: the rules and corrections are symmetric
+// between equal ones.
+std::vector<float> far_factors(const BondFamilies& bf, const NodeSet& ns, std::size_t i) {
+  bool candidate = false;
+  for (std::uint64_t k = bf.begin(i); k < bf.end(i) && !candidate; ++k) {
+    const std::uint32_t j = bf.neighbor[k];
+    candidate = ns.horizon[j] != ns.horizon[i] || ns.spacing[j] != ns.spacing[i];
+  }
+  if (!candidate) return {};
+  std::vector<float> f(bf.end(i) - bf.begin(i), 0.0f);
+  bool mixed = false;
+  for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {
+    const std::uint32_t j = bf.neighbor[k];
+    const auto first = bf.neighbor.begin() + static_cast<long>(bf.begin(j));
+    const auto last = bf.neighbor.begin() + static_cast<long>(bf.end(j));
+    const auto at = std::lower_bound(first, last, static_cast<std::uint32_t>(i));
+    float& v = f[k - bf.begin(i)];
+    if (at != last && *at == i) v = std::abs(bf.beta[static_cast<std::size_t>(at - bf.neighbor.begin())]);
+    mixed = mixed || v != std::abs(bf.beta[k]);
+  }
+  if (!mixed) f.clear();
+  return f;
+}
+
+// reverse_beta holding exactly the rows' factors that reverse_at points at, in node order.
+void pack_reverse(BondFamilies& bf) {
+  std::vector<float> packed;
+  for (std::size_t i = 0; i < bf.reverse_at.size(); ++i) {
+    if (bf.reverse_at[i] == BondFamilies::kNoReverse) continue;
+    const auto from = bf.reverse_beta.begin() + static_cast<long>(bf.reverse_at[i]);
+    bf.reverse_at[i] = packed.size();
+    packed.insert(packed.end(), from, from + static_cast<long>(bf.end(i) - bf.begin(i)));
+  }
+  bf.reverse_beta = std::move(packed);
+}
+
+}  // namespace
+
 void build_reverse(BondFamilies& bf, const NodeSet& ns, const std::vector<char>* redo) {
   const std::size_t n = bf.num_nodes();
-  // A row whose far ends all share its horizon and cell size has its own factors both ways (the
-  // rules and corrections are symmetric then): only the others are searched, by bisection of
-  // the far end's row (rows are sorted by neighbour id) for the near end.
-  auto candidate = [&](std::size_t i) {
-    for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {
-      const std::uint32_t j = bf.neighbor[k];
-      if (ns.horizon[j] != ns.horizon[i] || ns.spacing[j] != ns.spacing[i]) return true;
-    }
-    return false;
-  };
-  // Rows not to redo keep the factors they had; one that had none is checked again (its row may
-  // have arrived from another rank since).
-  const std::size_t n_old = redo ? bf.reverse_at.size() : 0;
-  std::vector<std::vector<float>> far(n);
+  // Rows to make: all, or those asked for and the rows new since the last build. The others
+  // keep the factors they had, where they lie.
+  std::vector<std::uint32_t> rows;
+  const bool all = !redo || bf.reverse_at.empty();
+  for (std::size_t i = 0; i < n; ++i)
+    if (all || i >= bf.reverse_at.size() || i >= redo->size() || (*redo)[i])
+      rows.push_back(static_cast<std::uint32_t>(i));
+  std::vector<std::vector<float>> far(rows.size());
 #pragma omp parallel for schedule(dynamic, 256)
-  for (std::size_t i = 0; i < n; ++i) {
-    if (bf.end(i) == bf.begin(i)) continue;
-    if (i < n_old && i < redo->size() && !(*redo)[i] &&
-        bf.reverse_at[i] != BondFamilies::kNoReverse) {
-      const auto from = bf.reverse_beta.begin() + static_cast<long>(bf.reverse_at[i]);
-      far[i].assign(from, from + static_cast<long>(bf.end(i) - bf.begin(i)));
+  for (std::size_t r = 0; r < rows.size(); ++r) far[r] = far_factors(bf, ns, rows[r]);
+  if (all) {
+    bf.reverse_at.assign(n, BondFamilies::kNoReverse);
+    bf.reverse_beta.clear();
+  } else {
+    bf.reverse_at.resize(n, BondFamilies::kNoReverse);
+  }
+  // Remade rows go after the others; their old entries become slack.
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    if (far[r].empty()) {
+      bf.reverse_at[rows[r]] = BondFamilies::kNoReverse;
       continue;
     }
-    if (!candidate(i)) continue;
-    std::vector<float> f(bf.end(i) - bf.begin(i), 0.0f);
-    bool mixed = false;
-    for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {
-      const std::uint32_t j = bf.neighbor[k];
-      const auto first = bf.neighbor.begin() + static_cast<long>(bf.begin(j));
-      const auto last = bf.neighbor.begin() + static_cast<long>(bf.end(j));
-      const auto at = std::lower_bound(first, last, static_cast<std::uint32_t>(i));
-      float& v = f[k - bf.begin(i)];
-      if (at != last && *at == i) v = std::abs(bf.beta[static_cast<std::size_t>(at - bf.neighbor.begin())]);
-      mixed = mixed || v != std::abs(bf.beta[k]);
-    }
-    if (mixed) far[i] = std::move(f);
+    bf.reverse_at[rows[r]] = bf.reverse_beta.size();
+    bf.reverse_beta.insert(bf.reverse_beta.end(), far[r].begin(), far[r].end());
   }
-  bf.reverse_at.assign(n, BondFamilies::kNoReverse);
-  std::uint64_t total = 0;
+  std::uint64_t live = 0;
   for (std::size_t i = 0; i < n; ++i)
-    if (!far[i].empty()) {
-      bf.reverse_at[i] = total;
-      total += far[i].size();
-    }
-  bf.reverse_beta.resize(total);
-#pragma omp parallel for schedule(dynamic, 256)
-  for (std::size_t i = 0; i < n; ++i)
-    if (!far[i].empty())
-      std::copy(far[i].begin(), far[i].end(), bf.reverse_beta.begin() + static_cast<long>(bf.reverse_at[i]));
+    if (bf.reverse_at[i] != BondFamilies::kNoReverse) live += bf.end(i) - bf.begin(i);
+  if (bf.reverse_beta.size() > live + live / 4) pack_reverse(bf);
 }
 
 void index_pairs(BondFamilies& bf, const NodeSet& ns, bool dual_horizon, bool state_based,
-                 const std::vector<char>* changed) {
+                 const std::vector<char>* changed, double member_reach) {
   if (dual_horizon) {
     bf.reverse_at.clear();
     bf.reverse_beta.clear();
@@ -499,11 +539,24 @@ void index_pairs(BondFamilies& bf, const NodeSet& ns, bool dual_horizon, bool st
     build_reverse(bf, ns);
     return;
   }
-  // A row's far-end factors change with its own row and with its far ends' rows.
+  // A row's far-end factors change with its own row and with its far ends' rows: the rows to
+  // look at are all, or those within a member's reach of a changed one.
   const std::size_t n = bf.num_nodes();
+  std::vector<std::uint32_t> look;
+  if (member_reach > 0) {
+    std::vector<std::uint32_t> seeds;
+    for (std::size_t i = 0; i < n; ++i)
+      if (i >= changed->size() || (*changed)[i]) seeds.push_back(static_cast<std::uint32_t>(i));
+    look = nodes_within(ns, seeds, member_reach);
+  } else {
+    look.resize(n);
+    for (std::size_t i = 0; i < n; ++i) look[i] = static_cast<std::uint32_t>(i);
+  }
   std::vector<char> redo(n, 0);
 #pragma omp parallel for schedule(dynamic, 256)
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t q = 0; q < look.size(); ++q) {
+    const std::uint32_t i = look[q];
+    if (i >= n) continue;
     bool r = i >= changed->size() || (*changed)[i];
     for (std::uint64_t k = bf.begin(i); k < bf.end(i) && !r; ++k)
       r = bf.neighbor[k] < changed->size() ? (*changed)[bf.neighbor[k]] != 0 : true;

@@ -66,6 +66,11 @@ std::vector<std::vector<QuadratureEntry>> quadrature_factors(
 std::vector<std::uint32_t> active_nodes_near(const NodeSet& nodes,
                                              const std::vector<std::uint32_t>& seeds, double margin);
 
+// Active nodes (ascending ids) within `radius` of one of `seeds`, and the seeds themselves
+// (active or not): the rows an event's change can reach.
+std::vector<std::uint32_t> nodes_within(const NodeSet& nodes, const std::vector<std::uint32_t>& seeds,
+                                        double radius);
+
 // Builds the transpose of the families (t_offsets, t_owner, t_bond), sorted by owner.
 void build_transpose(BondFamilies& bonds);
 
@@ -81,9 +86,11 @@ void build_reverse(BondFamilies& bonds, const NodeSet& nodes,
 // and their factors corrected: the dual-horizon transpose, or the plain LPS pairing's far-end
 // factors where the active nodes have more than one horizon. `changed`: the rows an event
 // searched again or whose factors it corrected (every row that reaches a changed node is among
-// them); the far-end factors of the other rows not bonded to one are kept.
+// them); the far-end factors of the other rows not bonded to one are kept. `member_reach` (with
+// `changed`): no member lies farther than this from its row, so only rows that near a changed
+// one are looked at; 0: every row is.
 void index_pairs(BondFamilies& bonds, const NodeSet& nodes, bool dual_horizon, bool state_based,
-                 const std::vector<char>* changed = nullptr);
+                 const std::vector<char>* changed = nullptr, double member_reach = 0);
 
 // Bonds with an end on a no-fail node can never break (flag carried by the bond's sign).
 // `rows` (optional): only the rows of flagged nodes (the others are known to be up to date).

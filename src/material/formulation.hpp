@@ -33,6 +33,10 @@ struct Formulation {
   // A node's force depends on its own bond row only: multi-rate stepping, refreshes of some
   // rows, and the stretch trigger measured by the force pass.
   bool row_local() const { return kind != Kind::Lps && !dual_horizon; }
+  // Some rows' forces can be recomputed alone (an event's refresh): row-local forces, and LPS
+  // from its rows' and their neighbours' dilatations. The dual pairing gathers memberships from
+  // other rows: full passes only.
+  bool refreshes_rows() const { return !dual_horizon; }
   // The bond-based stiffness (static solve) and the bond-based Poisson ratio apply.
   bool bond_based() const { return kind != Kind::Lps; }
   // Can be re-checked by the refinement overlay; takes a thermal strain.

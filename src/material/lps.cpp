@@ -35,17 +35,26 @@ inline double omega(double t) {
 
 // Pass 1: weighted volume (all bonds) and dilatation (intact bonds) of every active node, and
 // the packed per-node factors of the force pass. Branch-free inner loop (vectorizes).
-// `rows`: these nodes' only (a distributed pass's rows and their neighbours); the others keep 0.
+// `rows`: these nodes' only (a pass's rows and their neighbours); the others keep their values
+// (nodes new since the last pass start at 0), so that the dilatation field stays whole after a
+// pass over some rows.
 template <int D, InfluenceShape S, bool Mutual>
 void dilatation(const NodeSet& ns, const BondFamilies& bf, const LpsConstants& c, LpsScratch& sc,
                 const std::vector<std::uint32_t>* rows) {
   const std::size_t n = ns.size();
   const std::size_t n_rows = rows ? rows->size() : n;
   const std::uint32_t* row = rows ? rows->data() : nullptr;
-  sc.m.assign(n, 0.0);
-  sc.theta.assign(n, 0.0);
-  sc.packed.assign(4 * n, 0.0);
-  sc.reach.assign(n, INFINITY);
+  if (rows) {
+    sc.m.resize(n, 0.0);
+    sc.theta.resize(n, 0.0);
+    sc.packed.resize(4 * n, 0.0);
+    sc.reach.resize(n, INFINITY);
+  } else {
+    sc.m.assign(n, 0.0);
+    sc.theta.assign(n, 0.0);
+    sc.packed.assign(4 * n, 0.0);
+    sc.reach.assign(n, INFINITY);
+  }
   const std::uint32_t* nbr = bf.neighbor.data();
   const double* inv_len = bf.inv_length.data();
   const float* beta = bf.beta.data();
@@ -268,7 +277,15 @@ std::size_t lps_forces(NodeSet& ns, BondFamilies& bf, InfluenceShape shape, cons
   if (pdro && allow_breaking && pdro->interpolation == PdroInterpolation::Pim)
     pdro->visible_beta->assign(bf.beta.begin(), bf.beta.end());
   if (Wout) {
-    Wout->assign(ns.size(), 0.0);
+    // A pass over some rows changes only theirs; inactive nodes (parents an event switched off)
+    // hold none.
+    if (rows) {
+      Wout->resize(ns.size(), 0.0);
+      for (std::size_t i = 0; i < ns.size(); ++i)
+        if (!(ns.flags[i] & kActive)) (*Wout)[i] = 0.0;
+    } else {
+      Wout->assign(ns.size(), 0.0);
+    }
     return forces_dim<true>(shape, ns, bf, c, allow_breaking, sc, log, Wout->data(), pdro, rows,
                             dilatation_rows);
   }

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <bit>
 
+#include "discretize/families.hpp"
+#include "discretize/partial_volume.hpp"
 #include "material/contact.hpp"
 #include "material/force_model.hpp"
 #include "material/impactor.hpp"
@@ -150,7 +152,8 @@ std::size_t distributed_forces(Model& m, bool allow_breaking, const std::vector<
   return broken;
 }
 
-// A serial pass over every row or, for a row-local formulation, the given ones.
+// A serial pass over every row or the given ones (state-based: with their neighbours'
+// dilatations).
 std::size_t serial_forces(Model& m, bool allow_breaking, const std::vector<std::uint32_t>* rows,
                           std::vector<std::uint64_t>* log, std::vector<double>* W) {
   ForcePass pass;
@@ -158,6 +161,19 @@ std::size_t serial_forces(Model& m, bool allow_breaking, const std::vector<std::
   pass.broken_log = log;
   pass.W = W;
   pass.rows = rows;
+  std::vector<std::uint32_t> dilatation_rows;
+  if (rows && m.formulation.state_based()) {
+    const BondFamilies& bf = m.bonds;
+    std::vector<char> in(m.nodes.size(), 0);
+    for (std::uint32_t i : *rows) {
+      in[i] = 1;
+      if (i < bf.num_nodes())
+        for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) in[bf.neighbor[k]] = 1;
+    }
+    for (std::size_t i = 0; i < in.size(); ++i)
+      if (in[i]) dilatation_rows.push_back(static_cast<std::uint32_t>(i));
+    pass.dilatation_rows = &dilatation_rows;
+  }
   if (m.formulation.row_local()) pass.breakable_stretch = stretch_measure(m);
   const std::size_t broken = material_forces(m.nodes, m.bonds, material_context(m), pass);
   if (m.contact.enabled) add_contact_forces(m.contact, m.nodes, rows, W);
@@ -181,6 +197,20 @@ std::size_t internal_forces_rows(Model& m, bool allow_breaking, const std::vecto
                                            : serial_forces(m, allow_breaking, &rows, log, W);
   apply_ghost_correction(m, &rows);
   return b;
+}
+
+std::vector<std::uint32_t> rows_reading(const Model& m, const std::vector<std::uint32_t>& rows) {
+  if (!m.formulation.state_based() || rows.empty()) return rows;
+  const NodeSet& ns = m.nodes;
+  const int D = ns.dim;
+  // A row's members lie within its search radius, which grows with horizon and cell size.
+  double hmax = 0, dxmax = 0;
+  for (std::size_t i = 0; i < ns.size(); ++i)
+    if (ns.flags[i] & kActive) {
+      hmax = std::max(hmax, ns.horizon[i]);
+      dxmax = std::max(dxmax, ns.spacing[i]);
+    }
+  return nodes_within(ns, rows, quadrature_search_radius(m.quadrature.rule, D, hmax, dxmax) * (1 + 1e-9));
 }
 
 void energy_density(const Model& m, std::vector<double>& W) {

@@ -14,12 +14,17 @@ std::size_t internal_forces(Model& m, bool allow_breaking,
                             std::vector<std::uint64_t>* broken_log = nullptr,
                             std::vector<double>* W = nullptr);
 
-// The forces of the nodes `rows` only (m.formulation.row_local() must hold); the others keep
-// theirs.
+// The forces of the nodes `rows` only (m.formulation.refreshes_rows() must hold); the others
+// keep theirs. State-based forces read the rows' neighbours' dilatations, computed here too.
 // With W, the rows' energy densities are updated too (W must hold the others').
 std::size_t internal_forces_rows(Model& m, bool allow_breaking, const std::vector<std::uint32_t>& rows,
                                  std::vector<std::uint64_t>* broken_log = nullptr,
                                  std::vector<double>* W = nullptr);
+
+// The rows whose forces read the families of `rows` (ascending): `rows` themselves where a
+// node's force depends on its own row only; state-based, also every active node within the
+// largest search radius of one of them (its force reads their dilatations).
+std::vector<std::uint32_t> rows_reading(const Model& m, const std::vector<std::uint32_t>& rows);
 
 void energy_density(const Model& m, std::vector<double>& W);
 // The material's energy density of the listed rows only (the others' left as they are); with held

@@ -405,12 +405,14 @@ void VelocityVerlet::compute_accelerations(const std::vector<std::uint32_t>* row
   // (below). Its energy field is complete only if the other rows' densities belong to this very
   // state (computed by this step's pass); else the observers make their own.
   // A subcycle pass covers every node with a prescribed motion (they are never slow).
-  const bool partial = rows && m_.formulation.row_local();
+  const bool partial = rows && m_.formulation.refreshes_rows();
   // A subcycle step: the idle rows' densities at this (drifted) state come from their own pass.
   // Densities a region step left for each rank's own rows only do not complete a whole pass's
   // field (an event's refresh may also hand rows to new owners): the observers make their own.
+  // State-based passes compute densities in another order than the energy pass, which a
+  // distributed run's observers use after a refresh: a serial run does too, for the same bits.
   const bool energy_kept =
-      partial && want_energy &&
+      partial && want_energy && m_.formulation.row_local() &&
       (subcycle || (energy_step_ == step_ && (!energy_owned_only_ || ghost_step_)));
   if (subcycle && want_energy) {
     gather_rows(step_, false, idle_rows_);
@@ -568,7 +570,13 @@ void VelocityVerlet::refresh(const std::vector<std::uint32_t>* rows, bool sync) 
   ghost_step_ = false;
   m_.nodes.sync_all_current();
   apply_loads(time_);
-  compute_accelerations(rows);
+  // State-based, the rows' neighbours read their changed dilatations: their forces change too.
+  if (rows && m_.formulation.state_based()) {
+    const std::vector<std::uint32_t> reading = rows_reading(m_, *rows);
+    compute_accelerations(&reading);
+  } else {
+    compute_accelerations(rows);
+  }
   // A node's rate changes only with its row (new nodes, rebuilt families, scaled horizons).
   classify_rates(rows);
   if (syncing_) {
