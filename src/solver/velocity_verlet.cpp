@@ -391,15 +391,18 @@ void VelocityVerlet::gather_rows(long step, bool due, std::vector<std::uint32_t>
     }
 }
 
+bool VelocityVerlet::energy_wanted() const {
+  return std::find(energy_requests_.begin(), energy_requests_.end(), step_) != energy_requests_.end() ||
+         std::find(owned_energy_requests_.begin(), owned_energy_requests_.end(), step_) !=
+             owned_energy_requests_.end();
+}
+
 void VelocityVerlet::compute_accelerations(const std::vector<std::uint32_t>* rows, bool subcycle,
                                            bool closing_kick) {
   NodeSet& ns = m_.nodes;
   std::erase_if(energy_requests_, [&](long s) { return s < step_; });
   std::erase_if(owned_energy_requests_, [&](long s) { return s < step_; });
-  const bool want_energy =
-      std::find(energy_requests_.begin(), energy_requests_.end(), step_) != energy_requests_.end() ||
-      std::find(owned_energy_requests_.begin(), owned_energy_requests_.end(), step_) !=
-          owned_energy_requests_.end();
+  const bool want_energy = energy_wanted();
   // Only the rows' accelerations change in a partial pass (after an undo, the others hold the
   // restored state's, which their forces were not recomputed for); so do only their reactions
   // (below). Its energy field is complete only if the other rows' densities belong to this very
@@ -409,10 +412,8 @@ void VelocityVerlet::compute_accelerations(const std::vector<std::uint32_t>* row
   // A subcycle step: the idle rows' densities at this (drifted) state come from their own pass.
   // Densities a region step left for each rank's own rows only do not complete a whole pass's
   // field (an event's refresh may also hand rows to new owners): the observers make their own.
-  // State-based passes compute densities in another order than the energy pass, which a
-  // distributed run's observers use after a refresh: a serial run does too, for the same bits.
   const bool energy_kept =
-      partial && want_energy && m_.formulation.row_local() &&
+      partial && want_energy &&
       (subcycle || (energy_step_ == step_ && (!energy_owned_only_ || ghost_step_)));
   if (subcycle && want_energy) {
     gather_rows(step_, false, idle_rows_);
@@ -571,9 +572,16 @@ void VelocityVerlet::refresh(const std::vector<std::uint32_t>* rows, bool sync) 
   m_.nodes.sync_all_current();
   apply_loads(time_);
   // State-based, the rows' neighbours read their changed dilatations: their forces change too.
+  // A step whose energy densities are wanted takes a full pass: the force pass forms them in
+  // another order than the energy pass, which a distributed run's observers would take after a
+  // partial one (serial and distributed runs write the same bits).
   if (rows && m_.formulation.state_based()) {
-    const std::vector<std::uint32_t> reading = rows_reading(m_, *rows);
-    compute_accelerations(&reading);
+    if (energy_wanted()) {
+      compute_accelerations(nullptr);
+    } else {
+      const std::vector<std::uint32_t> reading = rows_reading(m_, *rows);
+      compute_accelerations(&reading);
+    }
   } else {
     compute_accelerations(rows);
   }

@@ -197,6 +197,7 @@ class VelocityVerlet {
   std::vector<Synced> synced_;  // nodes synchronize_velocities() put on the velocity of now
   bool syncing_ = false;
   std::array<double, kMaxRateRatio + 1> open_kick_{}, close_kick_{};
+  bool energy_wanted() const;  // this step's passes compute energies (asked for)
   std::vector<long> energy_requests_;  // steps whose force passes also compute energies
   std::vector<long> owned_energy_requests_;  // ... for this rank's rows only
   bool energy_owned_only_ = false;           // energy_ holds this rank's rows only
