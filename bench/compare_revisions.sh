@@ -15,14 +15,7 @@ rev=${1:?usage: bench/compare_revisions.sh REV [DECK] [REPEATS]}
 deck=${2:-bench/pmb_block_3d.yaml}
 repeats=${3:-5}
 [[ -x build/periadapt ]] || bash scripts/build.sh
-work=${TMPDIR:-/tmp}/periadapt-rev-$(git rev-parse --short "$rev")
-if [[ ! -x $work/build/periadapt ]]; then
-  rm -rf "$work/src"; mkdir -p "$work/src"
-  git archive "$rev" | tar -xf - -C "$work/src"
-  cmake -S "$work/src" -B "$work/build" -DCMAKE_BUILD_TYPE=Release -DPERIADAPT_BUILD_TESTS=OFF \
-    -DPERIADAPT_BUILD_BENCH=OFF > /dev/null
-  cmake --build "$work/build" -j"$(nproc)" > "$work/build.log" 2>&1 || { tail -20 "$work/build.log"; exit 1; }
-fi
+old_bin=$(bash bench/revision_binary.sh "$rev")
 out=$(mktemp -d); trap 'rm -rf "$out"' EXIT
 rate() {  # binary -> bond evaluations per second
   local sets=()
@@ -32,7 +25,7 @@ rate() {  # binary -> bond evaluations per second
 }
 old=(); new=()
 for ((k = 0; k < repeats; ++k)); do
-  old+=("$(rate "$work/build/periadapt")")
+  old+=("$(rate "$old_bin")")
   new+=("$(rate build/periadapt)")
 done
 python3 - "$rev" "${old[*]}" "${new[*]}" <<'PY'

@@ -16,14 +16,7 @@ if [[ $# -gt 0 && $1 =~ ^[0-9]+$ ]]; then repeats=$1; shift; fi
 decks=("$@")
 ((${#decks[@]})) || decks=(bench/agrs/*_lps.yaml)
 [[ -x build/periadapt ]] || bash scripts/build.sh
-work=${TMPDIR:-/tmp}/periadapt-rev-$(git rev-parse --short "$rev")
-if [[ ! -x $work/build/periadapt ]]; then
-  rm -rf "$work/src"; mkdir -p "$work/src"
-  git archive "$rev" | tar -xf - -C "$work/src"
-  cmake -S "$work/src" -B "$work/build" -DCMAKE_BUILD_TYPE=Release -DPERIADAPT_BUILD_TESTS=OFF \
-    -DPERIADAPT_BUILD_BENCH=OFF > /dev/null
-  cmake --build "$work/build" -j"$(nproc)" > "$work/build.log" 2>&1 || { tail -20 "$work/build.log"; exit 1; }
-fi
+old_bin=$(bash bench/revision_binary.sh "$rev")
 out=$(mktemp -d); trap 'rm -rf "$out"' EXIT
 sets=()
 for s in ${SET:-output.history_every=20}; do sets+=(--set "$s"); done
@@ -35,7 +28,7 @@ measure() {  # binary deck -> "wall events_wall events"
 for deck in "${decks[@]}"; do
   old=(); new=()
   for ((k = 0; k < repeats; ++k)); do
-    old+=("$(measure "$work/build/periadapt" "$deck")")
+    old+=("$(measure "$old_bin" "$deck")")
     new+=("$(measure build/periadapt "$deck")")
   done
   python3 - "$(basename "$deck" .yaml)" "$rev" "$(printf '%s;' "${old[@]}")" "$(printf '%s;' "${new[@]}")" <<'PY'
