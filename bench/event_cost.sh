@@ -3,7 +3,8 @@
 # noisy): builds REV in a scratch folder (as compare_revisions.sh does), then runs REV's and this
 # tree's binaries one after the other on each adaptive deck, REPEATS times each, and prints the
 # smallest whole-run wall time and the smallest events' time (summary.json's refinement_wall_s)
-# of each, with the event counts. Defaults: the AGRS suite's four LPS decks, 3 repeats, one thread
+# of each, their ratios (this tree over REV) and the event counts. Defaults: the AGRS suite's
+# four LPS decks, 3 repeats, one thread
 # (THREADS), output.history_every=20 (SET replaces it: LPS refreshes every row at a step whose
 # energy densities are asked for).
 #   bash bench/event_cost.sh REV [REPEATS] [DECK...]
@@ -36,8 +37,10 @@ import sys
 name, rev = sys.argv[1], sys.argv[2]
 runs = [[[float(v) for v in r.split()] for r in a.split(";") if r] for a in sys.argv[3:5]]
 (o, n) = runs
-print(f"{name}: wall {min(r[0] for r in o):.3f} s ({rev}) -> {min(r[0] for r in n):.3f} s; "
-      f"events {min(r[1] for r in o):.3f} -> {min(r[1] for r in n):.3f} s "
+wo, wn = min(r[0] for r in o), min(r[0] for r in n)
+eo, en = min(r[1] for r in o), min(r[1] for r in n)
+print(f"{name}: wall {wo:.3f} s ({rev}) -> {wn:.3f} s, ratio {wn / wo:.3f}; "
+      f"events {eo:.3f} -> {en:.3f} s, ratio {en / eo:.3f} "
       f"({int(o[0][2])} / {int(n[0][2])} events)")
 PY
 done
