@@ -385,28 +385,33 @@ TEST(AgrsInvisible, TheDefaultStepHoldsWhenAnInitialZoneAtAFreeEdgeLimitsItNow) 
 }
 
 TEST(AgrsInvisible, TheStretchTheForcePassTracksFlagsTheNodesASweepFlags) {
-  // Plain PMB: the stretch trigger reads each row's largest breakable stretch from the force pass
-  // instead of a sweep of its own. Under a load that flags some nodes and not others, both must
-  // flag the same nodes, for several thresholds.
-  const Deck dk = plate(1e-3, 4e6).build("plate");
-  Model m = build_model(dk);
-  AdaptSpec spec;
-  spec.enabled = true;
-  spec.max_level = 1;
-  m.track_breakable_stretch = true;
-  VelocityVerlet vv(m, 4e-8);
-  vv.initialize();
-  for (int s = 0; s < 250; ++s) ASSERT_TRUE(vv.step());
-  ASSERT_EQ(m.breakable_stretch.size(), m.nodes.size());
-  const std::vector<char> ok = refinable_nodes(m, spec);
-  for (double beta : {0.2, 0.25, 0.3}) {
+  // Plain PMB and LPS: the stretch trigger reads each row's largest breakable stretch from the
+  // force pass instead of a sweep of its own. Under a load that flags some nodes and not others,
+  // both must flag the same nodes, for several thresholds.
+  for (const char* law : {"pmb", "lps"}) {
+    DeckBuilder d = plate(1e-3, 4e6);
+    d.set("model.formulation", law);
+    if (std::string(law) == "lps") d.set("material.poisson_ratio", 0.25);
+    const Deck dk = d.build("plate");
+    Model m = build_model(dk);
+    AdaptSpec spec;
+    spec.enabled = true;
+    spec.max_level = 1;
     m.track_breakable_stretch = true;
-    const auto tracked = stretch_trigger(m, spec, beta, ok);
-    m.track_breakable_stretch = false;
-    const auto swept = stretch_trigger(m, spec, beta, ok);
-    EXPECT_EQ(tracked, swept) << "beta " << beta;
-    EXPECT_GT(swept.size(), 0u) << "beta " << beta;
-    EXPECT_LT(swept.size(), m.nodes.size()) << "beta " << beta;
+    VelocityVerlet vv(m, 4e-8);
+    vv.initialize();
+    for (int s = 0; s < 250; ++s) ASSERT_TRUE(vv.step()) << law;
+    ASSERT_EQ(m.breakable_stretch.size(), m.nodes.size()) << law;
+    const std::vector<char> ok = refinable_nodes(m, spec);
+    for (double beta : {0.2, 0.25, 0.3}) {
+      m.track_breakable_stretch = true;
+      const auto tracked = stretch_trigger(m, spec, beta, ok);
+      m.track_breakable_stretch = false;
+      const auto swept = stretch_trigger(m, spec, beta, ok);
+      EXPECT_EQ(tracked, swept) << law << " beta " << beta;
+      EXPECT_GT(swept.size(), 0u) << law << " beta " << beta;
+      EXPECT_LT(swept.size(), m.nodes.size()) << law << " beta " << beta;
+    }
   }
 }
 

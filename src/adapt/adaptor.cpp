@@ -27,9 +27,10 @@ Adaptor::Adaptor(Model& m, VelocityVerlet& vv, const AdaptSpec& spec)
     : m_(m), vv_(vv), spec_(spec), check_regions_(std::getenv("PERIADAPT_CHECK_REGIONS") != nullptr) {
   // The energy trigger is the only reader of the multi-rate densities (its check steps).
   vv_.keep_energies_for_checks(spec_.enabled && spec_.energy_fraction ? spec_.check_every : 0);
-  // The stretch trigger reads each row's largest stretch from the force passes where they are
-  // row-local (plain PMB); other forms measure it in a sweep of their own at each check.
-  m_.track_breakable_stretch = spec_.enabled && spec_.stretch_fraction && m_.formulation.row_local();
+  // The stretch trigger reads each row's largest stretch from the force passes (plain pairing);
+  // the dual pairing measures it in a sweep of its own at each check.
+  m_.track_breakable_stretch =
+      spec_.enabled && spec_.stretch_fraction && m_.formulation.passes_row_stretch();
   m_.window_surface_correction = true;
 }
 

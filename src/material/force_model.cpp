@@ -40,7 +40,8 @@ std::size_t material_forces(NodeSet& nodes, BondFamilies& bonds, const MaterialC
                  ? lps_dual_forces(nodes, bonds, mat.shape, mat.lps_constants, p.allow_breaking,
                                    ctx.lps, p.broken_log, p.W, split)
                  : lps_forces(nodes, bonds, mat.shape, mat.lps_constants, p.allow_breaking,
-                              ctx.lps, p.broken_log, p.W, ctx.pdro, p.rows, p.dilatation_rows);
+                              ctx.lps, p.broken_log, p.W, ctx.pdro, p.rows, p.dilatation_rows,
+                              p.breakable_stretch);
     case Kind::Pmb:
       return f.dual_horizon
                  ? pmb_dual_forces(nodes, bonds, mat.shape, p.allow_breaking, p.broken_log, p.W,

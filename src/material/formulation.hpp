@@ -30,9 +30,11 @@ struct Formulation {
   bool state_based() const { return kind == Kind::Lps; }
   bool keeps_bond_history() const { return kind == Kind::HistoryLaw; }
   // Capabilities.
-  // A node's force depends on its own bond row only: multi-rate stepping, refreshes of some
-  // rows, and the stretch trigger measured by the force pass.
+  // A node's force depends on its own bond row only: multi-rate stepping.
   bool row_local() const { return kind != Kind::Lps && !dual_horizon; }
+  // Each row's pass sees the row's own bonds (not the dual pairing's memberships): the force
+  // pass records the stretch trigger's measure per row.
+  bool passes_row_stretch() const { return !dual_horizon; }
   // Some rows' forces can be recomputed alone (an event's refresh): row-local forces, and LPS
   // from its rows' and their neighbours' dilatations. The dual pairing gathers memberships from
   // other rows: full passes only.

@@ -118,7 +118,7 @@ template <int D, InfluenceShape S, bool E, bool B, bool R>
 std::size_t forces(NodeSet& ns, BondFamilies& bf, const LpsConstants& c, bool allow_breaking,
                    LpsScratch& sc, std::vector<std::uint64_t>* log, double* W, const PdroSpec* pdro,
                    const std::vector<std::uint32_t>* rows,
-                   const std::vector<std::uint32_t>* dilatation_rows) {
+                   const std::vector<std::uint32_t>* dilatation_rows, double* smax_out) {
   dilatation<D, S, true>(ns, bf, c, sc, dilatation_rows);
   const std::size_t n = rows ? rows->size() : ns.size();
   const std::uint32_t* row = rows ? rows->data() : nullptr;
@@ -146,7 +146,8 @@ std::size_t forces(NodeSet& ns, BondFamilies& bf, const LpsConstants& c, bool al
                            ? bf.reverse_beta.data() + bf.reverse_at[i]
                            : beta + kb;
     double a0 = 0, a1 = 0, a2 = 0, wdev = 0, smax = -INFINITY;
-    // Fast pass: t_ij + t_ji of intact bonds and the largest stretch; nothing written per bond.
+    // Fast pass: t_ij + t_ji of intact bonds and the largest stretch of the intact breakable ones
+    // (the only ones that can break, and the stretch trigger's measure); nothing written per bond.
 #pragma omp simd reduction(+ : a0, a1, a2, wdev) reduction(max : smax)
     for (std::uint64_t k = kb; k < ke; ++k) {
       const std::size_t j = 4 * static_cast<std::size_t>(nbr[k]);
@@ -177,11 +178,13 @@ std::size_t forces(NodeSet& ns, BondFamilies& bf, const LpsConstants& c, bool al
       if constexpr (E) wdev += wi * edi * edi * bp * yp[j + 3];
       double s = e * ail;
       if constexpr (B) s *= isf[blk[nbr[k]]];
-      smax = smax > (bp > 0.0 ? s : -INFINITY) ? smax : (bp > 0.0 ? s : -INFINITY);
+      const bool breakable = bp > 0.0 && inv_len[k] > 0.0;
+      smax = smax > (breakable ? s : -INFINITY) ? smax : (breakable ? s : -INFINITY);
     }
     if (smax > s0) {
       // Rare: a bond breaks now; break it and redo the node without it.
       a0 = a1 = a2 = wdev = 0;
+      smax = -INFINITY;
       double bw = 0;
       std::size_t nb = 0;
       for (std::uint64_t k = kb; k < ke; ++k) {
@@ -202,6 +205,11 @@ std::size_t forces(NodeSet& ns, BondFamilies& bf, const LpsConstants& c, bool al
             log->push_back(k);
           }
           continue;
+        }
+        if (inv_len[k] > 0.0) {
+          double s = e * std::abs(inv_len[k]);
+          if constexpr (B) s *= isf[blk[nbr[k]]];
+          smax = std::max(smax, s);
         }
         const double mutual = static_cast<double>(x <= reach[nbr[k]]);
         double wi = mutual, wj = mutual;
@@ -224,6 +232,7 @@ std::size_t forces(NodeSet& ns, BondFamilies& bf, const LpsConstants& c, bool al
       ns.broken_weight[i] += bw;
       broken_total += nb;
     }
+    if (smax_out) smax_out[i] = smax;
     ns.f[0][i] = a0;
     if constexpr (D > 1) ns.f[1][i] = a1;
     if constexpr (D > 2) ns.f[2][i] = a2;
@@ -237,18 +246,18 @@ template <int D, bool E, bool B>
 std::size_t forces_shape(InfluenceShape s, NodeSet& ns, BondFamilies& bf, const LpsConstants& c,
                          bool brk, LpsScratch& sc, std::vector<std::uint64_t>* log, double* W,
                          const PdroSpec* pdro, const std::vector<std::uint32_t>* rows,
-                         const std::vector<std::uint32_t>* dr) {
+                         const std::vector<std::uint32_t>* dr, double* sm) {
   auto go = [&]<bool R>() {
     switch (s) {
       case InfluenceShape::Constant:
         return forces<D, InfluenceShape::Constant, E, B, R>(ns, bf, c, brk, sc, log, W, pdro, rows,
-                                                            dr);
+                                                            dr, sm);
       case InfluenceShape::Triangular:
         return forces<D, InfluenceShape::Triangular, E, B, R>(ns, bf, c, brk, sc, log, W, pdro,
-                                                              rows, dr);
+                                                              rows, dr, sm);
       default:
         return forces<D, InfluenceShape::InvertedTriangular, E, B, R>(ns, bf, c, brk, sc, log, W,
-                                                                      pdro, rows, dr);
+                                                                      pdro, rows, dr, sm);
     }
   };
   return bf.reverse_at.empty() ? go.template operator()<false>() : go.template operator()<true>();
@@ -258,12 +267,12 @@ template <bool E>
 std::size_t forces_dim(InfluenceShape s, NodeSet& ns, BondFamilies& bf, const LpsConstants& c,
                        bool brk, LpsScratch& sc, std::vector<std::uint64_t>* log, double* W,
                        const PdroSpec* pdro, const std::vector<std::uint32_t>* rows,
-                       const std::vector<std::uint32_t>* dr) {
+                       const std::vector<std::uint32_t>* dr, double* sm) {
   if (!sc.block_constants.empty())
-    return ns.dim == 3 ? forces_shape<3, E, true>(s, ns, bf, c, brk, sc, log, W, pdro, rows, dr)
-                       : forces_shape<2, E, true>(s, ns, bf, c, brk, sc, log, W, pdro, rows, dr);
-  return ns.dim == 3 ? forces_shape<3, E, false>(s, ns, bf, c, brk, sc, log, W, pdro, rows, dr)
-                     : forces_shape<2, E, false>(s, ns, bf, c, brk, sc, log, W, pdro, rows, dr);
+    return ns.dim == 3 ? forces_shape<3, E, true>(s, ns, bf, c, brk, sc, log, W, pdro, rows, dr, sm)
+                       : forces_shape<2, E, true>(s, ns, bf, c, brk, sc, log, W, pdro, rows, dr, sm);
+  return ns.dim == 3 ? forces_shape<3, E, false>(s, ns, bf, c, brk, sc, log, W, pdro, rows, dr, sm)
+                     : forces_shape<2, E, false>(s, ns, bf, c, brk, sc, log, W, pdro, rows, dr, sm);
 }
 
 }  // namespace
@@ -272,8 +281,20 @@ std::size_t lps_forces(NodeSet& ns, BondFamilies& bf, InfluenceShape shape, cons
                        bool allow_breaking, LpsScratch& sc, std::vector<std::uint64_t>* log,
                        std::vector<double>* Wout, const PdroSpec* pdro,
                        const std::vector<std::uint32_t>* rows,
-                       const std::vector<std::uint32_t>* dilatation_rows) {
+                       const std::vector<std::uint32_t>* dilatation_rows,
+                       std::vector<double>* breakable_stretch) {
   if (pdro && !pdro->enabled) pdro = nullptr;
+  double* sm = nullptr;
+  if (breakable_stretch) {
+    // Rows the pass skips (inactive, or not listed) keep what they had; new nodes start at -inf.
+    breakable_stretch->resize(ns.size(), -INFINITY);
+    sm = breakable_stretch->data();
+    const std::size_t n = rows ? rows->size() : ns.size();
+    for (std::size_t r = 0; r < n; ++r) {
+      const std::size_t i = rows ? (*rows)[r] : r;
+      if (!(ns.flags[i] & kActive)) sm[i] = -INFINITY;
+    }
+  }
   if (pdro && allow_breaking && pdro->interpolation == PdroInterpolation::Pim)
     pdro->visible_beta->assign(bf.beta.begin(), bf.beta.end());
   if (Wout) {
@@ -287,10 +308,10 @@ std::size_t lps_forces(NodeSet& ns, BondFamilies& bf, InfluenceShape shape, cons
       Wout->assign(ns.size(), 0.0);
     }
     return forces_dim<true>(shape, ns, bf, c, allow_breaking, sc, log, Wout->data(), pdro, rows,
-                            dilatation_rows);
+                            dilatation_rows, sm);
   }
   return forces_dim<false>(shape, ns, bf, c, allow_breaking, sc, log, nullptr, pdro, rows,
-                           dilatation_rows);
+                           dilatation_rows, sm);
 }
 
 namespace {

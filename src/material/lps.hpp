@@ -69,12 +69,15 @@ inline const LpsConstants& node_constants(const LpsConstants& c, const LpsScratc
 // Force densities (and bond breaking, broken-bond log, energy density, refinement overlay as
 // for PMB). `rows`: the forces (and W) of these nodes only (W of the others is 0), from the
 // dilatations of `dilatation_rows` (null: every node; it must hold `rows` and their neighbours).
+// `breakable_stretch`: also the largest stretch of each computed row's intact breakable bonds
+// after the pass (the stretch trigger's measure), as for PMB.
 std::size_t lps_forces(NodeSet& nodes, BondFamilies& bonds, InfluenceShape shape,
                        const LpsConstants& c, bool allow_breaking, LpsScratch& scratch,
                        std::vector<std::uint64_t>* broken_log, std::vector<double>* W,
                        const PdroSpec* pdro = nullptr,
                        const std::vector<std::uint32_t>* rows = nullptr,
-                       const std::vector<std::uint32_t>* dilatation_rows = nullptr);
+                       const std::vector<std::uint32_t>* dilatation_rows = nullptr,
+                       std::vector<double>* breakable_stretch = nullptr);
 
 // Weighted volume and dilatation of every active node into `scratch` (the first pass).
 // `mutual_only`: over the mutual bonds, as the plain kernel's states (above); false: over whole

@@ -174,7 +174,7 @@ std::size_t serial_forces(Model& m, bool allow_breaking, const std::vector<std::
       if (in[i]) dilatation_rows.push_back(static_cast<std::uint32_t>(i));
     pass.dilatation_rows = &dilatation_rows;
   }
-  if (m.formulation.row_local()) pass.breakable_stretch = stretch_measure(m);
+  pass.breakable_stretch = stretch_measure(m);
   const std::size_t broken = material_forces(m.nodes, m.bonds, material_context(m), pass);
   if (m.contact.enabled) add_contact_forces(m.contact, m.nodes, rows, W);
   if (!m.impactors.empty()) add_impactor_forces(m.impactors, m.nodes, rows, W);
