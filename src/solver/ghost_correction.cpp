@@ -26,19 +26,6 @@ void component(int dim, int c, int& p, int& q) {
 
 int components_of(int dim) { return dim == 1 ? 1 : dim == 2 ? 3 : 6; }
 
-// Whether the row's correction applies: the row and, for a state-based law, its neighbours have
-// every bond intact (a crack within them is no uniform strain). Checked when the table is
-// applied, so a table built before a bond broke and one built after act alike.
-bool uncut(const Model& m, std::uint32_t i) {
-  const NodeSet& ns = m.nodes;
-  if (ns.broken_weight[i] > 0) return false;
-  if (!m.formulation.state_based()) return true;
-  const BondFamilies& bf = m.bonds;
-  for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k)
-    if (ns.broken_weight[bf.neighbor[k]] > 0) return false;
-  return true;
-}
-
 }  // namespace
 
 void update_ghost_table(Model& m) {
@@ -113,26 +100,34 @@ void update_ghost_table(Model& m) {
       for (int d = 0; d < 3; ++d) cur_saved[3 * q + d] = ns.cur[4 * std::size_t{moved[q]} + d];
     for (std::size_t q = 0; q < rows.size(); ++q)
       for (int d = 0; d < 3; ++d) f_saved[3 * q + d] = ns.f[d][rows[q]];
-    // The rows' forces under +-h of each unit strain component, from the material alone.
+    // The rows' forces at the reference positions and under h of each unit strain component,
+    // from the material alone: G = (F(h) - F(0)) / h, to O(h) (F(0) is round-off, or a thermal
+    // strain's force).
     constexpr double h = 1e-6;
-    for (int c = 0; c < C; ++c) {
-      int p, q;
-      component(D, c, p, q);
-      for (const double sgn : {1.0, -1.0}) {
-        for (std::uint32_t i : moved) {
-          double y[3] = {ns.x[0][i], ns.x[1][i], ns.x[2][i]};
-          y[p] += sgn * h * ns.x[q][i];
-          if (p != q) y[q] += sgn * h * ns.x[p][i];
-          for (int d = 0; d < 3; ++d) ns.cur[4 * std::size_t{i} + d] = y[d];
+    auto pass_at = [&](int c, double* out, double scale) {
+      int p = 0, q = 0;
+      if (c >= 0) component(D, c, p, q);
+      for (std::uint32_t i : moved) {
+        double y[3] = {ns.x[0][i], ns.x[1][i], ns.x[2][i]};
+        if (c >= 0) {
+          y[p] += h * ns.x[q][i];
+          if (p != q) y[q] += h * ns.x[p][i];
         }
-        ForcePass pass;
-        pass.rows = &rows;
-        if (state) pass.dilatation_rows = &dil;
-        material_forces(ns, m.bonds, material_context(m), pass);
-        for (std::size_t r = 0; r < rows.size(); ++r)
-          for (int d = 0; d < D; ++d) G[(r * C + c) * 3 + d] += sgn * ns.f[d][rows[r]] / (2 * h);
+        for (int d = 0; d < 3; ++d) ns.cur[4 * std::size_t{i} + d] = y[d];
       }
-    }
+      ForcePass pass;
+      pass.rows = &rows;
+      if (state) pass.dilatation_rows = &dil;
+      material_forces(ns, m.bonds, material_context(m), pass);
+      for (std::size_t r = 0; r < rows.size(); ++r)
+        for (int d = 0; d < D; ++d) out[r * C * 3 + d] += scale * ns.f[d][rows[r]] / h;
+    };
+    std::vector<double> F0(rows.size() * C * 3, 0.0);
+    pass_at(-1, F0.data(), 1.0);
+    for (int c = 0; c < C; ++c) pass_at(c, G.data() + c * 3, 1.0);
+    for (std::size_t r = 0; r < rows.size(); ++r)
+      for (int c = 0; c < C; ++c)
+        for (int d = 0; d < D; ++d) G[(r * C + c) * 3 + d] -= F0[r * C * 3 + d];
     for (std::size_t q = 0; q < moved.size(); ++q)
       for (int d = 0; d < 3; ++d) ns.cur[4 * std::size_t{moved[q]} + d] = cur_saved[3 * q + d];
     for (std::size_t q = 0; q < rows.size(); ++q)
@@ -208,32 +203,45 @@ void update_ghost_table(Model& m) {
   for (std::size_t r = 0; r < g.rows.size(); ++r) g.slot[g.rows[r]] = static_cast<std::uint32_t>(r);
 }
 
-void apply_ghost_correction(Model& m, const std::vector<std::uint32_t>* rows) {
+namespace {
+
+// The correction of the table's rows (all, or those of `rows`): D a template argument so that
+// the bond loops unroll and vectorize.
+template <int D>
+void correct_rows(Model& m, const std::vector<std::uint32_t>* rows) {
   GhostTable& g = m.ghost;
-  if (!g.enabled) return;
-  update_ghost_table(m);
-  if (g.rows.empty()) return;
   NodeSet& ns = m.nodes;
   const BondFamilies& bf = m.bonds;
-  const int D = ns.dim, C = g.components;
+  const int C = g.components;
   const double* y = ns.cur.data();
+  const std::uint32_t* nbr = bf.neighbor.data();
+  const double* X[3] = {ns.x[0].data(), ns.x[1].data(), ns.x[2].data()};
+  const bool state = m.formulation.state_based();
   auto one = [&](std::size_t r) {
     const std::uint32_t i = g.rows[r];
-    if (!(ns.flags[i] & kActive) || !uncut(m, i)) return;
+    if (!(ns.flags[i] & kActive) || ns.broken_weight[i] > 0) return;
     // Displacement gradient H = (sum (u_j - u_i) (x) xi) K^-1 over the row's bonds, from the
     // positions the pass used (core/visible_gradient reads u, which a multi-rate slow row's drift
-    // has left behind, and forms its moment matrix again each time).
-    double A[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+    // has left behind, and forms its moment matrix again each time). A state-based row whose
+    // neighbours have a broken bond is cut (their dilatations see the crack): no uniform strain.
+    double A[D][D] = {};
+    double yi[D], xi_i[D];
+    for (int a = 0; a < D; ++a) xi_i[a] = X[a][i], yi[a] = y[4 * std::size_t{i} + a];
+    bool cut = false;
     for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {
-      const std::uint32_t j = bf.neighbor[k];
+      const std::uint32_t j = nbr[k];
+      if (state) cut |= ns.broken_weight[j] > 0;
+      double xi[D], du[D];
       for (int a = 0; a < D; ++a) {
-        const double xi_a = ns.x[a][j] - ns.x[a][i];
-        const double du = (y[4 * std::size_t{j} + a] - y[4 * std::size_t{i} + a]) - xi_a;
-        for (int b = 0; b < D; ++b) A[a][b] += du * (ns.x[b][j] - ns.x[b][i]);
+        xi[a] = X[a][j] - xi_i[a];
+        du[a] = (y[4 * std::size_t{j} + a] - yi[a]) - xi[a];
       }
+      for (int a = 0; a < D; ++a)
+        for (int b = 0; b < D; ++b) A[a][b] += du[a] * xi[b];
     }
+    if (cut) return;
     const double* Ki = &g.Kinv[r * 9];
-    double H[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+    double H[D][D] = {};
     for (int a = 0; a < D; ++a)
       for (int b = 0; b < D; ++b)
         for (int c = 0; c < D; ++c) H[a][b] += A[a][c] * Ki[3 * c + b];
@@ -254,6 +262,20 @@ void apply_ghost_correction(Model& m, const std::vector<std::uint32_t>* rows) {
   } else {
 #pragma omp parallel for schedule(dynamic, 64)
     for (std::size_t r = 0; r < g.rows.size(); ++r) one(r);
+  }
+}
+
+}  // namespace
+
+void apply_ghost_correction(Model& m, const std::vector<std::uint32_t>* rows) {
+  GhostTable& g = m.ghost;
+  if (!g.enabled) return;
+  update_ghost_table(m);
+  if (g.rows.empty()) return;
+  switch (m.nodes.dim) {
+    case 1: return correct_rows<1>(m, rows);
+    case 2: return correct_rows<2>(m, rows);
+    default: return correct_rows<3>(m, rows);
   }
 }
 
