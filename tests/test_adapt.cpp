@@ -1250,6 +1250,42 @@ TEST(Adapt, TheProfileRefinesPreCrackFrontsAndDrivenPatchesAtSetUp) {
   EXPECT_GT(refined_inside, 10u);
 }
 
+// A driven region that holds a whole family (a node all of whose bonds end inside it) carries
+// the fine grid's force on the coarse grid and stays coarse; a small one is refined. (Driven
+// disks of the compact-tension deck, coarse against fine force: radius 0.5 horizon 0.52-0.82,
+// one horizon and more 0.89-1.09; docs/agrs.md.)
+TEST(Adapt, TheProfileRefinesDrivenRegionsSmallAgainstAHorizonOnly) {
+  const double delta = 0.003;
+  const Vec3 big{0.015, 0.015, 0}, small{0.045, 0.015, 0};
+  auto pin = [](const char* name, const Vec3& c, double r) {
+    return DeckBuilder()
+        .set("name", name)
+        .set("region", DeckBuilder().set("disk.center", {c[0], c[1]}).set("disk.radius", r))
+        .set("velocity", test::Components{"0", "1.0"});
+  };
+  const Model m = build_model(test::glass_plate({0.0, 0.0}, {0.06, 0.03})
+                                  .append("boundary_conditions", pin("big", big, 2 * delta))
+                                  .append("boundary_conditions", pin("small", small, 0.5 * delta))
+                                  .set("adapt.max_level", 1)
+                                  .set("solver.end_time", 1e-7)
+                                  .build("driven disks"));
+  const NodeSet& ns = m.nodes;
+  std::size_t in_big = 0, in_small = 0, fine_small = 0;
+  for (std::size_t i = 0; i < ns.size(); ++i) {
+    if (!(ns.flags[i] & kActive)) continue;
+    const double rb = std::hypot(ns.x[0][i] - big[0], ns.x[1][i] - big[1]);
+    const double rs = std::hypot(ns.x[0][i] - small[0], ns.x[1][i] - small[1]);
+    if (rb <= 2 * delta) {
+      ++in_big;
+      EXPECT_EQ(ns.level[i], 0) << "big disk node at r = " << rb;
+    }
+    if (rs <= 0.5 * delta) ++in_small, fine_small += ns.level[i] == 1;
+  }
+  EXPECT_GT(in_big, 100u);
+  EXPECT_GT(in_small, 5u);
+  EXPECT_EQ(fine_small, in_small);
+}
+
 // A quadrilateral pre-crack cut into a 3D beam from its bottom face: only the edge inside the body
 // is a front (the edges outside the faces are not).
 TEST(Adapt, CrackTipZonesOfAQuadrilateralFollowItsFrontInsideTheBody) {

@@ -82,13 +82,31 @@ bool component_moves(bool velocity, const Expression& c) {
   return velocity ? !(c.is_constant() && c(0, 0, 0, 0) == 0.0) : c.depends_on_time();
 }
 
+namespace {
+
+// Whether some node of `nodes` has every bond of its family ending in `nodes`.
+bool holds_a_whole_family(const Model& m, const std::vector<std::uint32_t>& nodes) {
+  const BondFamilies& bf = m.bonds;
+  std::vector<char> in(m.nodes.size(), 0);
+  for (std::uint32_t i : nodes) in[i] = 1;
+  for (std::uint32_t i : nodes) {
+    if (i >= bf.num_nodes() || bf.end(i) == bf.begin(i)) continue;
+    bool whole = true;
+    for (std::uint64_t k = bf.begin(i); k < bf.end(i) && whole; ++k) whole = in[bf.neighbor[k]];
+    if (whole) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
 std::vector<InitialRefinement> driven_patch_zones(const Model& m, int level) {
   std::vector<InitialRefinement> zones;
   for (const PrescribedMotion& pm : m.motions) {
     bool moves = false;
     for (const auto& c : pm.component)
       moves = moves || (c && component_moves(pm.kind == PrescribedMotion::Kind::Velocity, *c));
-    if (!moves || pm.nodes.empty()) continue;
+    if (!moves || pm.nodes.empty() || holds_a_whole_family(m, pm.nodes)) continue;
     InitialRefinement z;
     z.level = level;
     z.region = pm.region;

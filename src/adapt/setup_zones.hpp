@@ -7,9 +7,14 @@
 //   loaded place of the body (the suite's double-edge-notched plate broke 12.5% early; with the
 //   zone made at set-up, 0.4% early).
 // - adapt.refine_motions: regions driven by a prescribed motion (a velocity, or a displacement
-//   that changes in time). The force a driven patch puts in depends on the grid under it (the
-//   suite's three-point bending beam: 18.1 kN on the coarse grid against 25.6 kN on the fine one
-//   at the same displacement), so a coarse patch loads the body more softly than the fine grid.
+//   that changes in time) that are small against a horizon. The force such a patch puts in
+//   depends on the grid under it (the suite's three-point bending beam: 18.1 kN on the coarse
+//   grid against 25.6 kN on the fine one at the same displacement), so a coarse patch loads the
+//   body more softly than the fine grid. The grid's share of that force is a layer about one
+//   horizon wide at the region's edge: a region that holds a whole family (a node all of whose
+//   bonds end inside it) carries the fine grid's force on the coarse grid (driven disks in the
+//   compact-tension deck, coarse against fine: radius 1.5 mm 0.52-0.82, 2 mm 0.81-0.97, 3-6 mm
+//   0.89-1.09 with a 3 mm coarse horizon; docs/agrs.md) and stays coarse.
 #include <vector>
 
 #include "adapt/adapt_spec.hpp"
@@ -25,7 +30,8 @@ namespace periadapt {
 std::vector<InitialRefinement> crack_tip_zones(const Model& m, int level);
 
 // The region of every prescribed motion that moves (a velocity component not identically zero,
-// or a displacement component that depends on t), asking for `level`.
+// or a displacement component that depends on t) and whose nodes hold no whole family (see
+// above), asking for `level`.
 std::vector<InitialRefinement> driven_patch_zones(const Model& m, int level);
 
 // Whether one component of a prescribed motion drives the body: a velocity not identically zero,
