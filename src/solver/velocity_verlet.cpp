@@ -575,7 +575,7 @@ void VelocityVerlet::refresh(const std::vector<std::uint32_t>* rows, bool sync) 
   // A step whose energy densities are wanted takes a full pass: the force pass forms them in
   // another order than the energy pass, which a distributed run's observers would take after a
   // partial one (serial and distributed runs write the same bits).
-  if (rows && m_.formulation.state_based()) {
+  if (rows && m_.formulation.state_based() && m_.formulation.refreshes_rows()) {
     if (energy_wanted()) {
       compute_accelerations(nullptr);
     } else {
