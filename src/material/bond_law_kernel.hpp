@@ -12,6 +12,7 @@
 
 #include "material/bond_law.hpp"
 #include "material/kernel_dispatch.hpp"
+#include "material/row_output.hpp"
 
 namespace periadapt {
 
@@ -253,12 +254,10 @@ struct BondLawKernels {
       if (c.rows) c.W->resize(ns.size(), 0.0);
       else c.W->assign(ns.size(), 0.0);
     }
-    if (c.breakable_stretch) c.breakable_stretch->resize(ns.size(), -INFINITY);
-    for (std::size_t q = 0; q < n; ++q) {
+    prepare_row_output(c.breakable_stretch, ns, c.rows, -INFINITY);
+    for (std::size_t q = 0; c.W && q < n; ++q) {
       const std::size_t i = c.rows ? (*c.rows)[q] : q;
-      if (ns.flags[i] & kActive) continue;
-      if (c.W) (*c.W)[i] = 0.0;
-      if (c.breakable_stretch) (*c.breakable_stretch)[i] = -INFINITY;
+      if (!(ns.flags[i] & kActive)) (*c.W)[i] = 0.0;
     }
     return dispatch<Forces>(ns.dim, c.shape, ns, bf, c);
   }

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "material/row_output.hpp"
+
 namespace periadapt {
 
 LpsConstants lps_constants(int dim, PlaneCondition plane, double E, double nu) {
@@ -284,17 +286,7 @@ std::size_t lps_forces(NodeSet& ns, BondFamilies& bf, InfluenceShape shape, cons
                        const std::vector<std::uint32_t>* dilatation_rows,
                        std::vector<double>* breakable_stretch) {
   if (pdro && !pdro->enabled) pdro = nullptr;
-  double* sm = nullptr;
-  if (breakable_stretch) {
-    // Rows the pass skips (inactive, or not listed) keep what they had; new nodes start at -inf.
-    breakable_stretch->resize(ns.size(), -INFINITY);
-    sm = breakable_stretch->data();
-    const std::size_t n = rows ? rows->size() : ns.size();
-    for (std::size_t r = 0; r < n; ++r) {
-      const std::size_t i = rows ? (*rows)[r] : r;
-      if (!(ns.flags[i] & kActive)) sm[i] = -INFINITY;
-    }
-  }
+  double* sm = prepare_row_output(breakable_stretch, ns, rows, -INFINITY);
   if (pdro && allow_breaking && pdro->interpolation == PdroInterpolation::Pim)
     pdro->visible_beta->assign(bf.beta.begin(), bf.beta.end());
   if (Wout) {

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "material/kernel_dispatch.hpp"
+#include "material/row_output.hpp"
 
 namespace periadapt {
 
@@ -312,17 +313,7 @@ PmbStepStats pmb_forces(NodeSet& nodes, BondFamilies& bonds, InfluenceShape shap
     W->assign(nodes.size(), 0.0);
     w = W->data();
   }
-  double* sb = nullptr;
-  if (breakable_stretch) {
-    // Rows the pass skips (inactive, or not listed) keep what they had; new nodes start at -inf.
-    breakable_stretch->resize(nodes.size(), -INFINITY);
-    sb = breakable_stretch->data();
-    const std::size_t n = rows ? rows->size() : nodes.size();
-    for (std::size_t r = 0; r < n; ++r) {
-      const std::size_t i = rows ? (*rows)[r] : r;
-      if (!(nodes.flags[i] & kActive)) sb[i] = -INFINITY;
-    }
-  }
+  double* sb = prepare_row_output(breakable_stretch, nodes, rows, -INFINITY);
   st.newly_broken =
       dispatch<ForcesOp>(nodes.dim, shape, nodes, bonds, allow_breaking, broken_log, w,
                          pdro && pdro->enabled ? pdro : nullptr, thermal_strain, rows, sb, pairs);
