@@ -5,6 +5,8 @@
 # solver.owned_integration false) and 1 rank x 2 threads, REPEATS times each in turn. Prints the
 # time-stepping rate (summary.json's bond_evals_per_s, from the solver's wall time) of each run and
 # the ratios of the medians: 2 ranks against 1 rank x 1 thread, and against 1 rank x 2 threads.
+# Also the median of each round's own ratios: the runs of one round follow each other within a
+# minute, so a slow spell of the machine that spans a round cancels in its ratio.
 #   [PERIADAPT=path/to/periadapt] bash bench/mpi_scaling.sh [REPEATS] [DECK]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -37,4 +39,8 @@ for name, v in (("1 rank x 1 thread ", s), ("2 ranks x 1 thread", r), ("1 rank x
 m = statistics.median
 print(f"2 ranks / 1 rank x 1 thread: {m(r) / m(s):.3f}; 2 ranks / 1 rank x 2 threads: {m(r) / m(t):.3f}")
 print(f"replicated integration: {m(w) / m(s):.3f} and {m(w) / m(t):.3f}")
+rs = [a / b for a, b in zip(r, s)]
+rt = [a / b for a, b in zip(r, t)]
+print("per round, 2 ranks / 1 rank x 1 thread: " + ", ".join(f"{x:.3f}" for x in rs) + f"  median {m(rs):.3f}")
+print("per round, 2 ranks / 1 rank x 2 threads: " + ", ".join(f"{x:.3f}" for x in rt) + f"  median {m(rt):.3f}")
 PY
