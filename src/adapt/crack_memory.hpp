@@ -25,7 +25,7 @@ struct Facet {
     return in3d ? norm(sub(quad[0], centre())) : 0.5 * norm(sub(b, a));
   }
   bool crossed_by(const Vec3& p, const Vec3& q) const {
-    return in3d ? bond_crosses_quad(p, q, quad) : bond_crosses_segment(p, q, a, b);
+    return in3d ? bond_crosses_quad<true>(p, q, quad) : bond_crosses_segment<true>(p, q, a, b);
   }
 };
 
