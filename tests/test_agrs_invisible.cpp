@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "adapt/event_relaxation.hpp"
+#include "analysis/breakable_stretch.hpp"
 #include "adapt/refine.hpp"
 #include "adapt/triggers.hpp"
 #include "input/deck_builder.hpp"
@@ -412,6 +413,60 @@ TEST(AgrsInvisible, TheStretchTheForcePassTracksFlagsTheNodesASweepFlags) {
       EXPECT_GT(swept.size(), 0u) << law << " beta " << beta;
       EXPECT_LT(swept.size(), m.nodes.size()) << law << " beta " << beta;
     }
+  }
+}
+
+TEST(AgrsInvisible, TheStretchTriggerCountsNoBondIntoAFinerZone) {
+  // A coarse node's bonds into a refined zone stretch with the zone's own field (and its
+  // interface forces), which the coarse grid does not have; the trigger must not flag the zone's
+  // coarse neighbours for them, or the zone grows by a horizon at every check. Here the children
+  // alone are pushed away from the zone's centre (2% radial strain, far beyond the trigger): no
+  // coarse node may be flagged, while the plain largest stretch of the nodes next to the zone
+  // passes the limit. Under a uniform strain of the whole plate the same nodes are flagged.
+  for (const char* law : {"pmb", "lps"}) {
+    DeckBuilder d = plate(1e-3, 4e6);
+    d.set("model.formulation", law);
+    if (std::string(law) == "lps") d.set("material.poisson_ratio", 0.25);
+    Model m = build_model(d.build("plate"));
+    AdaptSpec spec;
+    spec.enabled = true;
+    spec.max_level = 1;
+    const double cx = 0.0075, cy = 0.0075;
+    ASSERT_GT(refine_nodes(m, parents_near(m, spec, cx, cy, 0.002), spec, true).parents, 0u);
+    NodeSet& ns = m.nodes;
+    const double strain = 0.02;
+    for (std::size_t i = 0; i < ns.size(); ++i) {
+      if (!(ns.flags[i] & kActive) || ns.level[i] == 0) continue;
+      ns.u[0][i] = strain * (ns.x[0][i] - cx);
+      ns.u[1][i] = strain * (ns.x[1][i] - cy);
+      ns.sync_current(i);
+    }
+    const std::vector<char> ok = refinable_nodes(m, spec);
+    const double beta = 0.5;
+    for (const bool tracked : {false, true}) {
+      m.track_breakable_stretch = tracked;
+      if (tracked) {
+        m.breakable_stretch.assign(ns.size(), -INFINITY);
+        for (std::size_t i = 0; i < ns.size(); ++i)
+          if (ns.flags[i] & kActive) m.breakable_stretch[i] = largest_breakable_stretch(m, static_cast<std::uint32_t>(i));
+      }
+      EXPECT_TRUE(stretch_trigger(m, spec, beta, ok).empty()) << law << " tracked " << tracked;
+    }
+    m.track_breakable_stretch = false;
+    std::size_t next_to_zone = 0;
+    for (std::size_t i = 0; i < ns.size(); ++i)
+      if (ok[i] && largest_breakable_stretch(m, static_cast<std::uint32_t>(i)) >= beta * std::sqrt(2.0) * ns.critical_stretch[i])
+        ++next_to_zone;
+    EXPECT_GT(next_to_zone, 0u) << law;
+    for (std::size_t i = 0; i < ns.size(); ++i) {
+      if (!(ns.flags[i] & kActive)) continue;
+      ns.u[0][i] = strain * ns.x[0][i];
+      ns.u[1][i] = strain * ns.x[1][i];
+      ns.sync_current(i);
+    }
+    std::size_t breakable = 0;  // refinable nodes outside the no-fail strips
+    for (std::size_t i = 0; i < ns.size(); ++i) breakable += ok[i] && !(ns.flags[i] & kNoFail);
+    EXPECT_EQ(stretch_trigger(m, spec, beta, ok).size(), breakable) << law;
   }
 }
 

@@ -70,7 +70,11 @@ struct Recorder : RunObserver {
     ++energy_checks;
   }
   void on_event(RunView& view, const RefinementEvent& e) override {
-    EXPECT_EQ(e.step, view.vv.step_count());
+    // Observers hear of events once the step is done. An event is stamped with the state it
+    // refined: the step just taken, or, where bonds broke on a coarse node and the step was
+    // undone, refined and redone, the step before it.
+    const bool redone = e.trigger == "damage" && e.step + 1 == view.vv.step_count();
+    EXPECT_TRUE(e.step == view.vv.step_count() || redone) << e.trigger << " at " << e.step;
     ++events;
   }
   void finish(RunView&, RunResult& r) override {

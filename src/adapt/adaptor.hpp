@@ -19,7 +19,7 @@ class ArchiveReader;
 struct RefinementEvent {
   long step = 0;
   double time = 0;
-  std::string trigger;           // "energy", "damage" or "coarsen"
+  std::string trigger;           // "energy", "stretch", "damage" or "coarsen"
   std::size_t identified = 0;    // nodes flagged by the trigger
   RefineStats stats;             // parents refined, children created, momentum, kinetic energy
   std::size_t active_nodes = 0;  // after the event

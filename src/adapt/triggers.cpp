@@ -87,8 +87,10 @@ std::vector<std::uint32_t> stretch_trigger(const Model& m, const AdaptSpec& spec
         beta * std::min(m.material.onset_stretch,
                         ns.critical_stretch[i] *
                             std::sqrt(failure_horizon(m, spec, i) / level_horizon(m, spec, ns.level[i] + 1)));
-    hot[i] = (tracked ? m.breakable_stretch[i]
-                      : largest_breakable_stretch(m, static_cast<std::uint32_t>(i))) >= limit;
+    // The force pass's value counts every breakable bond and so bounds the own-level measure
+    // from above: only rows it passes are swept again.
+    hot[i] = (!tracked || m.breakable_stretch[i] >= limit) &&
+             largest_breakable_stretch_own_level(m, static_cast<std::uint32_t>(i)) >= limit;
   }
   std::vector<std::uint32_t> out;
   for (std::size_t i = 0; i < n; ++i)

@@ -22,8 +22,9 @@ std::vector<char> refinable_nodes(const Model& m, const AdaptSpec& spec);
 std::vector<std::uint32_t> energy_trigger(const Model& m, const std::vector<double>& W,
                                           double alpha, const std::vector<char>& refinable);
 
-// Stretch trigger: refinable nodes with an intact breakable bond stretched to at least beta
-// times the critical stretch their children will have. No-fail nodes have no breakable bond, so
+// Stretch trigger: refinable nodes with an intact breakable bond to a node of their own level or
+// coarser stretched to at least beta times the critical stretch their children will have (bonds
+// into a finer zone do not count: breakable_stretch.hpp). No-fail nodes have no breakable bond, so
 // they never ask for refinement themselves; they join a zone only through the visibility
 // criterion, where a crack-prone zone within a horizon would otherwise end at them (an interface
 // there breaks the fine side's bonds: the suite's double-edge-notched plate cracked along its

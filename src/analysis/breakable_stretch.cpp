@@ -2,11 +2,18 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace periadapt {
 
-double largest_breakable_stretch(const Model& m, std::uint32_t i) {
+namespace {
+
+// Largest stretch of row i's intact breakable bonds; with own_level, only the bonds to nodes of
+// level <= row i's.
+double largest_stretch_of_row(const Model& m, std::uint32_t i, bool own_level) {
   const NodeSet& ns = m.nodes;
+  const std::int8_t* lv = ns.level.data();
+  const std::int8_t li = own_level ? lv[i] : std::numeric_limits<std::int8_t>::max();
   const BondFamilies& bf = m.bonds;
   const double eth = m.material.thermal_strain;
   const double* yp = ns.cur.data();
@@ -19,7 +26,7 @@ double largest_breakable_stretch(const Model& m, std::uint32_t i) {
     const double* isf = m.block_pairs.inv_stretch_row(ns.block[i]);
     double sn = -INFINITY;
     for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {
-      if (!(bt[k] > 0.0f) || !(inv_len[k] > 0.0)) continue;
+      if (!(bt[k] > 0.0f) || !(inv_len[k] > 0.0) || lv[nbr[k]] > li) continue;
       const std::size_t j = 4 * static_cast<std::size_t>(nbr[k]);
       const double d0 = yp[j] - yi0, d1 = yp[j + 1] - yi1, d2 = yp[j + 2] - yi2;
       const double s = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2) * inv_len[k] - 1.0 - eth;
@@ -36,9 +43,19 @@ double largest_breakable_stretch(const Model& m, std::uint32_t i) {
     const double d0 = yp[j] - yi0, d1 = yp[j + 1] - yi1, d2 = yp[j + 2] - yi2;
     const double il = inv_len[k];
     const double v = (d0 * d0 + d1 * d1 + d2 * d2) * il * il;
-    q = std::max(q, (bt[k] > 0.0f && il > 0.0) ? v : -1.0);
+    q = std::max(q, (bt[k] > 0.0f && il > 0.0 && lv[nbr[k]] <= li) ? v : -1.0);
   }
   return q < 0.0 ? -INFINITY : std::sqrt(q) - 1.0 - eth;
+}
+
+}  // namespace
+
+double largest_breakable_stretch(const Model& m, std::uint32_t i) {
+  return largest_stretch_of_row(m, i, false);
+}
+
+double largest_breakable_stretch_own_level(const Model& m, std::uint32_t i) {
+  return largest_stretch_of_row(m, i, true);
 }
 
 std::vector<double> breakable_stretch_ratio(const Model& m) {

@@ -12,6 +12,12 @@ namespace periadapt {
 
 double largest_breakable_stretch(const Model& m, std::uint32_t i);
 
+// The same over the bonds to nodes of the row's own level or coarser: the stretch trigger's
+// measure. A coarse row's bonds into a finer zone stretch with the zone's own field and its
+// interface forces, which the coarse grid does not have; counted, they flag the zone's coarse
+// neighbours and the zone grows by a horizon at a time (docs/agrs.md, "Bonds into a finer zone").
+double largest_breakable_stretch_own_level(const Model& m, std::uint32_t i);
+
 // Per node: largest_breakable_stretch / critical stretch (1 = a bond is about to break), 0 where
 // no bond can break; the VTU field `stretch_ratio`.
 std::vector<double> breakable_stretch_ratio(const Model& m);
