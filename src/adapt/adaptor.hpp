@@ -17,7 +17,7 @@ class ArchiveWriter;
 class ArchiveReader;
 
 struct RefinementEvent {
-  long step = 0;
+  long step = 0;  // the state refined: a damage event that redoes its step has the step before
   double time = 0;
   std::string trigger;           // "energy", "stretch", "damage" or "coarsen"
   std::size_t identified = 0;    // nodes flagged by the trigger

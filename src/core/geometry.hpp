@@ -185,12 +185,14 @@ inline double orient2d_snapped(const Vec3& a, const Vec3& b, const Vec3& c) {
 // True when bond p-q crosses crack segment a-b in the xy-plane. The bond endpoints must lie on
 // opposite sides strictly (a node exactly on the crack line keeps its bonds); a crack end that
 // touches the bond counts as crossing.
-// Snapped: orientations within round-off of zero count as zero. The crack memory's facets sit on
-// the lattice by construction, their ends often exactly on a child's bond, where the computed
-// sign is round-off: mirror images (coordinates differing in their last bits) then decided
-// differently, and a mirror-symmetric plate cracked on one side only. A deck's pre-cracks keep
-// the exact predicate: the seed studies were validated with its decisions at their tips
-// (snapped, the crack-branching deck's tip cuts two bonds more or fewer).
+// Snapped (the crack memory's facets): orientations within round-off of zero count as zero, and
+// a facet's end that only touches the bond does not cut it. Facets sit on the lattice by
+// construction, their ends often exactly on a child's bond, where the computed sign is round-off:
+// mirror images (coordinates differing in their last bits) decided differently, and a
+// mirror-symmetric plate cracked on one side only. A facet is a short mark across a broken bond,
+// not the crack's extent, so a touch is no crossing. A deck's pre-cracks keep the exact
+// predicate: the seed studies were validated with its decisions at their tips (snapped, the
+// crack-branching deck's tip cuts two bonds more or fewer).
 template <bool Snapped = false>
 inline bool bond_crosses_segment(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b) {
   auto orient = [](const Vec3& u, const Vec3& v, const Vec3& w) {
@@ -199,7 +201,7 @@ inline bool bond_crosses_segment(const Vec3& p, const Vec3& q, const Vec3& a, co
   const double o1 = orient(a, b, p), o2 = orient(a, b, q);
   if (!((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0))) return false;
   const double o3 = orient(p, q, a), o4 = orient(p, q, b);
-  return o3 * o4 <= 0;
+  return Snapped ? o3 * o4 < 0 : o3 * o4 <= 0;
 }
 
 // True when bond p-q crosses the planar quadrilateral v0..v3 (3D pre-crack). Same conventions as
