@@ -1218,13 +1218,14 @@ TEST(Adapt, TheProfileRefinesPreCrackFrontsAndDrivenPatchesAtSetUp) {
       const bool fine = ns.level[i] == 1;
       if (dist(ns, i, tip) <= delta) ++near_tip, fine_near_tip += fine;
       if (ns.x[0][i] >= 0.05 && ns.x[1][i] >= 0.029) ++driven, fine_driven += fine;
-      // Beyond two horizons and a cell (zone, visibility, children's offsets) of the front and of
-      // the driven strip everything is coarse: the mouth, the held support, the zero velocity and
-      // the constant offset included.
+      // Beyond a horizon and a cell of the front (the front's zone is its visibility ball, not
+      // widened again) and two horizons and a cell of the driven strip (zone, visibility,
+      // children's offsets) everything is coarse: the mouth, the held support, the zero velocity
+      // and the constant offset included.
       const double h = 0.001;
       const bool far_from_driven =
           ns.x[0][i] < 0.05 - 2 * delta - h || ns.x[1][i] < 0.029 - 2 * delta - h;
-      if ((dist(ns, i, tip) > 2 * delta + h && far_from_driven) || dist(ns, i, mouth) <= delta) {
+      if ((dist(ns, i, tip) > delta + h && far_from_driven) || dist(ns, i, mouth) <= delta) {
         EXPECT_EQ(ns.level[i], 0) << "node at " << ns.x[0][i] << ", " << ns.x[1][i];
       }
     }
@@ -1248,6 +1249,55 @@ TEST(Adapt, TheProfileRefinesPreCrackFrontsAndDrivenPatchesAtSetUp) {
     EXPECT_GE(inside.nodes.x[0][i], 0.04);
   }
   EXPECT_GT(refined_inside, 10u);
+}
+
+// Damage on the finest level refines the coarse nodes that would see it when the damage trigger
+// works alone (thesis Algorithm A.2). With the stretch trigger, coarse nodes are refined by their
+// own bonds' stretch: an unloaded coarse node beside a crack on the finest level stays coarse
+// (by proximity, every crack drew a band a coarse horizon wide along its faces).
+TEST(Adapt, FineDamageRefinesUnloadedCoarseNodesOnlyWithoutTheStretchTrigger) {
+  for (const bool stretch : {false, true}) {
+    SCOPED_TRACE(stretch ? "stretch and damage triggers" : "damage trigger alone");
+    DeckBuilder adapt = level_one().set("damage_trigger", true).set("check_every", 1);
+    if (stretch) adapt.set("stretch_trigger", 0.5);
+    const Deck dk = test::glass_plate({0.0, 0.0}, {0.06, 0.03})
+                        .set("adapt", adapt)
+                        .append("adapt.initial_refinement",
+                                DeckBuilder()
+                                    .set("region", test::box({0.025, 0.01}, {0.035, 0.02}))
+                                    .set("level", 1))
+                        .set("solver.end_time", 1e-7)
+                        .build("refined plate");
+    Model m = build_model(dk);
+    NodeSet& ns = m.nodes;
+    // A fine node 3.5-4 mm from the nearest coarse one: its bonds (1.5 mm) reach fine nodes only,
+    // and those neighbours lie within a coarse horizon (3 mm) of coarse nodes.
+    std::uint32_t kicked = 0;
+    double best = 1e9;
+    for (std::size_t i = 0; i < ns.size(); ++i) {
+      if (!(ns.flags[i] & kActive) || ns.level[i] != 1) continue;
+      double nearest = 1e9;
+      for (std::size_t j = 0; j < ns.size(); ++j)
+        if ((ns.flags[j] & kActive) && ns.level[j] == 0)
+          nearest = std::min(nearest, std::hypot(ns.x[0][i] - ns.x[0][j], ns.x[1][i] - ns.x[1][j]));
+      if (std::abs(nearest - 0.00375) < best) best = std::abs(nearest - 0.00375), kicked = i;
+    }
+    ASSERT_LT(best, 0.00025);
+    ns.v[1][kicked] = 500.0;  // 25 um in one step: every bond of the node breaks
+    const std::size_t n0 = ns.size();
+    VelocityVerlet vv(m, 5.0e-8);
+    vv.initialize();
+    Adaptor ad(m, vv, dk.adapt);
+    ASSERT_TRUE(ad.step());
+    std::size_t broken = 0;
+    for (std::uint64_t k = m.bonds.begin(kicked); k < m.bonds.end(kicked); ++k)
+      broken += !BondFamilies::intact(m.bonds.beta[k]);
+    EXPECT_GT(broken, 10u);
+    if (stretch)
+      EXPECT_EQ(ns.size(), n0) << "an unloaded coarse node was refined";
+    else
+      EXPECT_GT(ns.size(), n0) << "the coarse nodes that see the damage were not refined";
+  }
 }
 
 // A driven region that holds a whole family (a node all of whose bonds end inside it) carries

@@ -19,6 +19,7 @@ struct InitialRefinement {
   Shape region;
   int level = 1;
   std::optional<Shape> within;  // refined only inside this too (the profile's zones: adapt.region)
+  bool widen = true;  // widened by the visibility criterion (adapt.visibility)
 };
 
 // Node generation (thesis 3.2.3, Fig. 3.5).

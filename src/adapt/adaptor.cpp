@@ -348,8 +348,10 @@ bool Adaptor::step() {
       // Damage grew on the finest level only: the step stands; the coarse nodes that would see
       // it are refined ahead of the crack for the next steps.
       // Batched every check_every steps: if the crack reaches a coarse node first, the branch
-      // above refines it with the step redone.
-      if (!ids.empty() && vv_.step_count() % spec_.check_every == 0)
+      // above refines it with the step redone. The stretch trigger finds the coarse nodes a tip
+      // loads by their own bonds; by proximity it would also take the unloaded ones beside the
+      // crack's faces, a band of a coarse horizon along every crack.
+      if (!ids.empty() && !spec_.stretch_fraction && vv_.step_count() % spec_.check_every == 0)
         refine(parents_for(ids, &refinable), ids.size(), "damage");
       break;
     }

@@ -235,6 +235,7 @@ void apply_initial_refinement(Model& m, const AdaptSpec& spec) {
     std::vector<char> want(ns.size(), 0);
     std::vector<std::uint32_t> ids;
     std::vector<const Shape*> within;  // per id: where its visibility may reach (null: anywhere)
+    std::vector<char> widen;   // per id: whether its zone is widened
     for (std::size_t i = 0; i < ns.size(); ++i) {
       if (!(ns.flags[i] & kActive) || ns.level[i] != level) continue;
       const Vec3 p{ns.x[0][i], ns.x[1][i], ns.x[2][i]};
@@ -243,6 +244,7 @@ void apply_initial_refinement(Model& m, const AdaptSpec& spec) {
             (!z.within || z.within->contains(p, 1e-9 * ns.spacing[i]))) {
           ids.push_back(static_cast<std::uint32_t>(i));
           within.push_back(z.within ? &*z.within : nullptr);
+          widen.push_back(z.widen);
           break;
         }
     }
@@ -259,6 +261,7 @@ void apply_initial_refinement(Model& m, const AdaptSpec& spec) {
       if (spec.visibility)
         for (std::size_t r = 0; r < ids.size(); ++r) {
           const std::uint32_t i = ids[r];
+          if (!widen[r]) continue;
           grid.for_each_within({ns.x[0][i], ns.x[1][i], ns.x[2][i]}, ns.horizon[i] * (1 + 1e-12),
                                [&](std::uint32_t j, double) {
                                  if ((ns.flags[j] & kActive) && !(ns.flags[j] & kBoundary) &&

@@ -46,6 +46,10 @@ std::vector<InitialRefinement> crack_tip_zones(const Model& m, int level) {
     z.region.kind = ns.dim == 3 ? Shape::Kind::Sphere : Shape::Kind::Disk;
     z.region.center = p;
     z.region.radius = delta;
+    // The ball is the front point's visibility ball already: every coarse node that sees the
+    // point is in it. Widened once more it doubled the zone (the 3D inclined plate: 22% of the
+    // body before the first step).
+    z.widen = false;
     zones.push_back(std::move(z));
   };
   for (const PreCrack& c : m.cracks) {

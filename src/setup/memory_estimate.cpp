@@ -76,7 +76,7 @@ double setup_zone_cells(const Deck& dk, double nodes) {
       if (!fixed) cells += region_measure(mo.region, dk.grid.body, D) / std::pow(dx, D);
     }
   if (a.refine_crack_tips) {
-    const double r = 2 * dk.horizon;
+    const double r = dk.horizon;  // the front's visibility ball (not widened again)
     const double ball = D == 3 ? 4.0 / 3.0 * M_PI * r * r * r : D == 2 ? M_PI * r * r : 2 * r;
     for (const PreCrack& c : dk.cracks) {
       double points = 2;
