@@ -15,6 +15,7 @@ check overlay_dual_horizon.yaml "overlay_dual_horizon.yaml:5:3: key 'damage': th
 check overlay_sampling.yaml "overlay_sampling.yaml:5:29: key 'damage.overlay.sampling': 'everywhere' is not allowed; allowed: three_pairs, whole_bond"
 check multirate_lps.yaml "multirate_lps.yaml:7:14: key 'solver.multirate': multi-rate stepping needs row-local forces: formulation: pmb"
 check lattice_lps.yaml "lattice_lps.yaml:6:29: key 'discretization.micromodulus_calibration': lattice calibrates bond-based micromoduli"
+check static_free.yaml "static_free.yaml:8:16: key 'solver.type': a static solve needs boundary_conditions that prescribe displacements"
 check contact_static.yaml "contact_static.yaml:9:12: key 'contact.enabled': contact forces are for explicit runs"
 check impactor_axis.yaml "impactor_axis.yaml:9:78: key 'impactors[0].axis': a sphere has no length or axis"
 check body_outside.yaml "body_outside.yaml:5:9: key 'discretization.body': the body cannot be an outside (complement) region"
@@ -55,10 +56,22 @@ out=$("$bin" run "$dir/unknown_key.yaml" --threads 0 2>&1); rc=$?
 [[ $rc -eq 2 && "$out" == *"--threads: Value 0 not in range 1 to 4096"* ]] && echo "ok   --threads 0: $out" || { echo "FAIL --threads 0: $rc $out"; fail=1; }
 out=$("$bin" check "$dir/does_not_exist.yaml" 2>&1); rc=$?
 [[ $rc -eq 2 && "$out" == *"cannot open"* ]] && echo "ok   missing file: $out" || { echo "FAIL missing file: $rc $out"; fail=1; }
-# Only a solve can tell that a static system is singular: `run`, not `check`.
+# Only a solve can tell that a held static system is still singular: `run`, not `check`.
 tmp=$(mktemp -d)
 out=$("$bin" run "$dir/static_unconstrained.yaml" --out "$tmp" --quiet 2>&1); rc=$?
 rm -rf "$tmp"
 [[ $rc -eq 2 && "$out" == *"static_unconstrained.yaml"* && "$out" == *"singular system"* ]] \
   && echo "ok   static_unconstrained.yaml: $out" || { echo "FAIL static_unconstrained.yaml: $rc $out"; fail=1; }
+# A refinement event that leaves the step above the refined rows' bound stops the run after that
+# step with its outputs finished: exit 3, the node and step named, summary status
+# unstable_time_step, no .part left.
+tmp=$(mktemp -d)
+out=$("$bin" run "$dir/adapt_unstable_after_event.yaml" --out "$tmp" --quiet 2>&1); rc=$?
+status=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["status"])' "$tmp/summary.json" 2>&1)
+parts=$(ls "$tmp" | grep -c '\.part$')
+[[ $rc -eq 3 && "$out" == *"made the time step unstable"* && "$out" == *"node "* && "$out" == *"solver.time_step to"* &&
+   "$status" == unstable_time_step && $parts -eq 0 && -s "$tmp/history.csv" && -s "$tmp/refinement.csv" ]] \
+  && echo "ok   adapt_unstable_after_event.yaml: $out" ||
+  { echo "FAIL adapt_unstable_after_event.yaml: rc $rc, status $status, $parts .part files: $out"; fail=1; }
+rm -rf "$tmp"
 exit $fail

@@ -134,6 +134,7 @@ refuse "a truncated checkpoint" "truncated" --restart "$tmp/cut.bin"
 echo "not a checkpoint" > "$tmp/junk.bin"
 refuse "a file that is no checkpoint" "not a PeriAdapt checkpoint" --restart "$tmp/junk.bin"
 refuse "a folder without one" "no checkpoint here" --restart "$tmp"
+refuse "an end before the checkpoint" "not past its" --restart "$ck" --set solver.end_time=1.0e-8
 # A longer run and other output settings are allowed: the deck's physics is what must match.
 "$bin" run "$adaptive" --out "$tmp/longer" --quiet --restart "$ck" --set solver.end_time=60.0e-6 \
   --set output.vtu_snapshots=3 > "$tmp/longer.log" 2>&1 && ok "restart with a longer end_time" ||

@@ -7,6 +7,7 @@
 #include "input/deck.hpp"
 #include "input/deck_builder.hpp"
 #include "input/deck_error.hpp"
+#include "setup/build_model.hpp"
 
 using namespace periadapt;
 
@@ -299,6 +300,17 @@ TEST(DeckErrors, EveryLoaderCheckRefusesItsCaseNamingTheKey) {
       {{"output.crack_tip.direction=[0, 0]"}, "output.crack_tip.direction", "non-zero"},
       {{"output.crack_tip.threshold=2"}, "output.crack_tip.threshold", ""},
       {{"output.colour=blue"}, "output.colour", "unknown key"},
+      {{"output.directory=''"}, "output.directory", "must name a folder"},
+      {{"cracks.0.segment=[[.nan, 0.02], [0.05, 0.02]]"}, "cracks[0].segment", "finite"},
+      {{"cracks.0.segment=[[0, 0.02], [.inf, 0.02]]"}, "cracks[0].segment", "finite"},
+      {{"solver.type=static", "solver.end_time=null"}, "solver.type",
+       "prescribe displacements"},
+      {{"loads=[{name: top, type: traction, region: {box: {min: [0, 0.039], max: [0.1, 0.04]}}, "
+        "value: [0, 1.0e6]}, {name: top, type: traction, region: {box: {min: [0, 0], max: [0.1, "
+        "0.001]}}, value: [0, -1.0e6]}]"}, "loads[1].name", "another load is named 'top'"},
+      {{"boundary_conditions=[{name: left, region: {box: {min: [0, 0], max: [0.001, 0.04]}}, "
+        "velocity: [0, 0]}, {name: left, region: {box: {min: [0.099, 0], max: [0.1, 0.04]}}, "
+        "velocity: [0, 0]}]"}, "boundary_conditions[1].name", "another boundary condition"},
       {{"output.load_displacement={name: nobody}"}, "output.load_displacement.name", "top left"},
       {{"output.load_displacement={name: left, component: z}"}, "output.load_displacement.component", "allowed"},
   };
@@ -314,6 +326,80 @@ TEST(DeckErrors, EveryLoaderCheckRefusesItsCaseNamingTheKey) {
       EXPECT_NE(msg.find(std::string("'") + r.key), std::string::npos) << msg;
       EXPECT_NE(msg.find(r.because), std::string::npos) << msg;
       EXPECT_NE(msg.find("bad.yaml"), std::string::npos) << msg;
+    }
+  }
+}
+
+// yaml-cpp reads the first of two equal keys and a deck's first document only: what the user
+// wrote second would be ignored.
+TEST(DeckErrors, ARepeatedKeyOrASecondDocumentIsRefusedWithItsLine) {
+  DeckError e = expect_error(replace(kGood, "  density: 2440\n", "  density: 2440\n  density: 1000\n"));
+  EXPECT_EQ(e.key(), "material.density");
+  EXPECT_EQ(e.line(), 6);
+  EXPECT_TRUE(contains(e, "first on line 5")) << e.what();
+  e = expect_error(std::string(kGood) + "solver:\n  end_time: 2.0e-6\n");
+  EXPECT_EQ(e.key(), "solver");
+  EXPECT_TRUE(contains(e, "twice")) << e.what();
+  e = expect_error(replace(kGood, "  - segment: [[0, 0.02], [0.05, 0.02]]\n",
+                           "  - {segment: [[0, 0.02], [0.05, 0.02]], segment: [[0, 0.01], [0.05, 0.01]]}\n"));
+  EXPECT_EQ(e.key(), "cracks[0].segment");
+  e = expect_error(std::string(kGood) + "---\noutput: {vtu_snapshots: 10}\n");
+  EXPECT_EQ(e.line(), 16);
+  EXPECT_TRUE(contains(e, "second YAML document")) << e.what();
+  // A document marker before the deck, or a trailing one, leaves one document.
+  EXPECT_NO_THROW(parse_deck(std::string("---\n") + kGood + "---\n", "good.yaml"));
+}
+
+// What only the grid can tell: a region that selects no node, a prescribed value that is not
+// finite on its nodes at the start. Each names its key and the line it was written on.
+TEST(DeckErrors, TheGridRefusesEmptyRegionsAndNonFiniteMotionsNamingTheLine) {
+  const std::string base =
+      "model: {dimension: 2, plane: stress}\n"                                              // 1
+      "material: {youngs_modulus: 72.0e9, density: 2440, fracture_energy: 135}\n"           // 2
+      "discretization: {spacing: 0.001, body: {box: {min: [0, 0], max: [0.02, 0.01]}}}\n"    // 3
+      "boundary_conditions:\n"                                                              // 4
+      "  - name: pull\n"                                                                    // 5
+      "    region: {box: {min: [0.019, 0], max: [0.02, 0.01]}}\n"                            // 6
+      "    velocity: [\"1e-3 * t / (t + 1e-6)\", 0]\n"                                      // 7
+      "damage:\n"                                                                           // 8
+      "  no_fail:\n"                                                                        // 9
+      "    - box: {min: [0, 0], max: [0.002, 0.01]}\n"                                       // 10
+      "adapt:\n"                                                                            // 11
+      "  max_level: 1\n"                                                                    // 12
+      "  energy_trigger: 0.5\n"                                                             // 13
+      "  region: {box: {min: [0.005, 0], max: [0.015, 0.01]}}\n"                            // 14
+      "  initial_refinement:\n"                                                             // 15
+      "    - {region: {box: {min: [0.009, 0.004], max: [0.011, 0.006]}}, level: 1}\n"        // 16
+      "solver: {steps: 2}\n";
+  ASSERT_NO_THROW(build_model(parse_deck(base, "grid.yaml")));
+  struct Row {
+    std::string from, to;
+    const char* key;
+    int line;
+    const char* because;
+  };
+  const std::vector<Row> rows = {
+      {"[0.019, 0], max: [0.02, 0.01]", "[0.05, 0], max: [0.06, 0.01]", "boundary_conditions[0].region",
+       6, "selects no nodes"},
+      {"1e-3 * t / (t + 1e-6)", "1e-3 / t", "boundary_conditions[0].velocity[0]", 7, "at t = 0"},
+      {"1e-3 * t / (t + 1e-6)", "sqrt(-1 - x)", "boundary_conditions[0].velocity[0]", 7, "finite"},
+      {"[0, 0], max: [0.002, 0.01]", "[0.1, 0], max: [0.2, 0.01]", "damage.no_fail[0]", 10,
+       "selects no nodes"},
+      {"[0.005, 0], max: [0.015, 0.01]", "[0.5, 0], max: [0.6, 0.01]", "adapt.region", 14,
+       "nothing could ever be refined"},
+      {"[0.009, 0.004], max: [0.011, 0.006]", "[0.3, 0.3], max: [0.4, 0.4]",
+       "adapt.initial_refinement[0].region", 16, "refine nothing"},
+  };
+  for (const Row& r : rows) {
+    SCOPED_TRACE(r.to);
+    try {
+      build_model(parse_deck(replace(base, r.from, r.to), "grid.yaml"));
+      ADD_FAILURE() << "accepted";
+    } catch (const DeckError& e) {
+      EXPECT_EQ(e.key(), r.key) << e.what();
+      EXPECT_EQ(e.line(), r.line) << e.what();
+      EXPECT_TRUE(contains(e, r.because)) << e.what();
+      EXPECT_TRUE(contains(e, "grid.yaml:")) << e.what();
     }
   }
 }

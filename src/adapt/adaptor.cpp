@@ -209,11 +209,22 @@ void Adaptor::refine(const std::vector<std::uint32_t>& parents, std::size_t iden
   ev.bonds = whole_bond_count(m_.partition, m_.bonds);
   ev.dt_stable = s.dt;
   events_.push_back(ev);
+  // Reported once the event is complete (forces refreshed, partition current), so that the
+  // run can stop with outputs of a sound state.
+  std::string unstable;
   if (vv_.dt() > s.dt * (1 + 1e-9))
-    throw UnstableAfterRefinement(fmt::format(
-        "refinement at t = {:.4e} s made the time step unstable: dt = {:.4e} s exceeds the stable "
-        "step {:.4e} s of the refined grid (node {}, level {}); lower solver.time_step",
-        vv_.time(), vv_.dt(), s.dt, s.node, static_cast<int>(m_.nodes.level[s.node])));
+    unstable = fmt::format(
+        "refinement at step {} (t = {:.4e} s) made the time step unstable: dt = {:.4e} s exceeds "
+        "the stable step {:.4e} s of the refined grid (node {}, level {}, x = [{:.6g}, {:.6g}, "
+        "{:.6g}]); {}set solver.time_step to {:.3e} s (0.8 of this bound) or less",
+        vv_.step_count(), vv_.time(), vv_.dt(), s.dt, s.node,
+        static_cast<int>(m_.nodes.level[s.node]), m_.nodes.x[0][s.node], m_.nodes.x[1][s.node],
+        m_.nodes.x[2][s.node],
+        m_.surface_correction != SurfaceCorrection::None
+            ? "the default step estimates the finest level's bound before the run, which the "
+              "surface correction's factors on the refined rows can lower: "
+            : "",
+        0.8 * s.dt);
   if (window) {
     // The partition the refresh's pass would make: a repartition hands rows to ranks whose
     // copies of them and their neighbours are stale, so their previous owners send everything.
@@ -242,6 +253,7 @@ void Adaptor::refine(const std::vector<std::uint32_t>& parents, std::size_t iden
       throw std::logic_error(fmt::format("{} region nodes stale after the refinement event at step {}",
                                          stale, ev.step));
   }
+  if (!unstable.empty()) throw UnstableAfterRefinement(unstable);
 }
 
 bool Adaptor::coarsen_quiet(const std::vector<double>& E, double alpha) {

@@ -33,6 +33,17 @@ using namespace periadapt;
 
 namespace {
 
+// The --set options of a run, quoted for a shell, to restate in the command that continues it.
+std::string restart_settings(const std::vector<std::string>& overrides) {
+  std::string out;
+  for (const std::string& o : overrides) {
+    std::string q;
+    for (char c : o) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    out += " --set '" + q + "'";
+  }
+  return out;
+}
+
 int check(const std::string& path, const std::vector<std::string>& overrides,
           const std::string& nodes_csv) {
   const Deck dk = load_deck(path, overrides);
@@ -363,9 +374,16 @@ int main(int argc, char** argv) {
       fmt::print(stderr,
                  "interrupted by signal {} after step {}: history, snapshots so far, "
                  "summary.json (status interrupted) and checkpoint.bin are in {}; continue with "
-                 "periadapt run {} --restart {}\n",
-                 r.interrupted, r.steps_done, run_dir, deck, run_dir);
+                 "periadapt run {} --restart {} --out {}{}\n",
+                 r.interrupted, r.steps_done, run_dir, deck, run_dir, run_dir,
+                 restart_settings(overrides));
       return 128 + r.interrupted;
+    }
+    if (r.unstable_time_step) {
+      fmt::print(stderr, "error: {}. The outputs up to step {} are kept in {} (summary.json "
+                         "status unstable_time_step).\n",
+                 *r.unstable_time_step, r.steps_done, run_dir);
+      return 3;
     }
     if (r.divergence) {
       const DivergenceReport& d = *r.divergence;

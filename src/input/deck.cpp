@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <fstream>
 #include <sstream>
 
@@ -96,15 +97,47 @@ Deck parse_deck(const std::string& text, const std::string& name,
 }
 
 namespace {
+// yaml-cpp keeps both entries of a repeated key and reads the first: the second would be
+// ignored without a word.
+void refuse_duplicate_keys(const YAML::Node& n, const std::string& name, const std::string& path) {
+  if (n.IsMap()) {
+    std::map<std::string, int> seen;
+    for (auto it = n.begin(); it != n.end(); ++it) {
+      const bool scalar = it->first.IsScalar();
+      const std::string key = scalar ? it->first.Scalar() : std::string("?");
+      const std::string at = path.empty() ? key : path + "." + key;
+      if (scalar) {
+        const auto [first, fresh] = seen.emplace(key, it->first.Mark().line + 1);
+        if (!fresh)
+          throw DeckError(name, it->first.Mark().line + 1, it->first.Mark().column + 1, at,
+                          "given twice in one mapping (first on line " +
+                              std::to_string(first->second) +
+                              "); a key may appear once, and the second would be ignored");
+      }
+      refuse_duplicate_keys(it->second, name, at);
+    }
+  } else if (n.IsSequence()) {
+    for (std::size_t k = 0; k < n.size(); ++k)
+      refuse_duplicate_keys(n[k], name, path + "[" + std::to_string(k) + "]");
+  }
+}
+
 Deck parse_deck_sections(const std::string& text, const std::string& name,
                          const std::vector<std::string>& overrides) {
   YAML::Node root;
   try {
-    root = YAML::Load(text);
+    const std::vector<YAML::Node> docs = YAML::LoadAll(text);
+    for (std::size_t k = 1; k < docs.size(); ++k)
+      if (!docs[k].IsNull())
+        throw DeckError(name, docs[k].Mark().line + 1, docs[k].Mark().column + 1, "",
+                        "a second YAML document (after '---'): a deck is one document, and "
+                        "what follows the first would be ignored");
+    if (!docs.empty()) root = docs[0];
   } catch (const YAML::ParserException& e) {
     throw DeckError(name, e.mark.line + 1, e.mark.column + 1, "",
                     "malformed YAML: " + e.msg + " (check indentation, colons and brackets)");
   }
+  refuse_duplicate_keys(root, name, "");
   if (root.IsMap())
     for (const std::string& kv : overrides) apply_override(root, name, kv);
   if (!root.IsMap())

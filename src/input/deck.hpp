@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/geometry.hpp"
+#include "input/deck_error.hpp"
 #include "adapt/adapt_spec.hpp"
 #include "material/contact.hpp"
 #include "material/impactor.hpp"
@@ -24,6 +25,7 @@ struct LoadSpec {
   enum class Kind { Traction, BodyForce } kind = Kind::Traction;
   std::string name;
   Shape region;
+  DeckPlace region_at;
   Vec3 value{0, 0, 0};   // traction (Pa) or body-force density (N/m^3)
   double layer = 0.0;    // traction: depth of the loaded layer (0: one grid spacing)
   TimeFunction time;
@@ -33,7 +35,9 @@ struct MotionSpec {
   enum class Kind { Velocity, Displacement } kind = Kind::Velocity;
   std::string name;
   Shape region;
+  DeckPlace region_at;
   std::array<std::optional<std::string>, 3> component;
+  std::array<DeckPlace, 3> component_at;
 };
 
 // load_displacement.png: the force of one load or boundary condition against the mean
@@ -112,6 +116,9 @@ struct Deck {
   // damage
   bool damage = true;
   std::vector<Shape> no_fail;
+  std::vector<DeckPlace> no_fail_at;
+  std::vector<DeckPlace> initial_refinement_at;  // adapt.initial_refinement[k].region
+  std::optional<DeckPlace> adapt_region_at;
   PdroSpec pdro;
   ContactSpec contact;
   std::vector<Impactor> impactors;

@@ -5,11 +5,20 @@
 
 namespace periadapt {
 
+// Where a value was given: its key path and line/column in the deck (0: not from a line, e.g. a
+// --set override).
+struct DeckPlace {
+  std::string key;
+  int line = 0, column = 0;
+};
+
 class DeckError : public std::runtime_error {
  public:
   DeckError(const std::string& file, int line, int column, const std::string& key,
             const std::string& message)
       : std::runtime_error(format(file, line, column, key, message)), key_(key), line_(line) {}
+  DeckError(const std::string& file, const DeckPlace& at, const std::string& message)
+      : DeckError(file, at.line, at.column, at.key, message) {}
   // An error formatted elsewhere (another rank's, passed on as it is).
   struct Formatted {};
   DeckError(Formatted, const std::string& text, const std::string& key)

@@ -168,7 +168,7 @@ Shape parse_region(Section s, int dim) {
 }
 
 std::array<std::optional<std::string>, 3> parse_components(Section& s, const std::string& key,
-                                                           int dim) {
+                                                           int dim, std::array<DeckPlace, 3>* at) {
   std::array<std::optional<std::string>, 3> out;
   YAML::Node n = s.raw(key);
   if (!n.IsSequence() || static_cast<int>(n.size()) != dim)
@@ -187,6 +187,9 @@ std::array<std::optional<std::string>, 3> parse_components(Section& s, const std
                             "; allowed: a number or an expression of x, y, z, t (muparser syntax)");
     }
     out[d] = e.Scalar();
+    if (at)
+      (*at)[d] = {s.key_path(key) + "[" + std::to_string(d) + "]", e.Mark().line + 1,
+                  e.Mark().column + 1};
   }
   return out;
 }

@@ -20,7 +20,13 @@ void parse_loading_and_damage(Section& top, Deck& dk) {
     std::string t = l.choice("type", {"traction", "body_force"});
     ls.kind = t == "traction" ? LoadSpec::Kind::Traction : LoadSpec::Kind::BodyForce;
     ls.name = l.text("name", l.path());
+    for (const LoadSpec& other : dk.loads)
+      if (other.name == ls.name)
+        l.fail("name", "another load is named '" + ls.name +
+                           "'; a name labels history.csv's columns and plots, so each load needs "
+                           "its own");
     ls.region = parse_region(l.section("region"), dk.dim);
+    ls.region_at = l.place("region");
     ls.value = to_vec(l.numbers("value", static_cast<std::size_t>(dk.dim),
                                 static_cast<std::size_t>(dk.dim)));
     if (ls.kind == LoadSpec::Kind::Traction) ls.layer = l.number("layer", 0.0, non_negative());
@@ -32,12 +38,18 @@ void parse_loading_and_damage(Section& top, Deck& dk) {
   for (Section b : top.list("boundary_conditions")) {
     MotionSpec ms;
     ms.name = b.text("name", b.path());
+    for (const MotionSpec& other : dk.motions)
+      if (other.name == ms.name)
+        b.fail("name", "another boundary condition is named '" + ms.name +
+                           "'; a name labels history.csv's columns and plots, so each one needs "
+                           "its own");
     ms.region = parse_region(b.section("region"), dk.dim);
+    ms.region_at = b.place("region");
     if (b.has("velocity") == b.has("displacement"))
       b.fail("", "a boundary condition needs exactly one of: velocity, displacement");
     const bool vel = b.has("velocity");
     ms.kind = vel ? MotionSpec::Kind::Velocity : MotionSpec::Kind::Displacement;
-    ms.component = parse_components(b, vel ? "velocity" : "displacement", dk.dim);
+    ms.component = parse_components(b, vel ? "velocity" : "displacement", dk.dim, &ms.component_at);
     b.finish();
     dk.motions.push_back(ms);
   }
@@ -50,7 +62,10 @@ void parse_loading_and_damage(Section& top, Deck& dk) {
   // --- damage
   if (auto dmg = top.optional_section("damage")) {
     dk.damage = dmg->boolean("enabled", true);
-    for (Section r : dmg->list("no_fail")) dk.no_fail.push_back(parse_region(r, dk.dim));
+    for (Section r : dmg->list("no_fail")) {
+      dk.no_fail.push_back(parse_region(r, dk.dim));
+      dk.no_fail_at.push_back(r.place());
+    }
     if (auto pd = dmg->optional_section("overlay")) {
       // Stewart & Jeon 2019 refinement overlay: bonds re-checked on a virtual sub-grid dx / n.
       dk.pdro.enabled = true;

@@ -18,6 +18,7 @@ void parse_output(Section& top, Deck& dk) {
   if (auto o = top.optional_section("output")) {
     OutputSpec& out = dk.output;
     out.directory = o->text("directory", out.directory);
+    if (out.directory.empty()) o->fail("directory", "must name a folder (for the current one: '.')");
     out.vtu = o->boolean("vtu", true);
     out.stress = o->boolean("stress", false);
     out.vtu_zlib = o->choice("vtu_compression", {"none", "zlib"}, "none") == "zlib";

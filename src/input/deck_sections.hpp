@@ -27,8 +27,10 @@ Vec3 to_vec(const std::vector<double>& v);
 // A region: box, disk, polygon, cylinder, sphere, surface, gmsh or all (optionally `outside`).
 Shape parse_region(Section s, int dim);
 // `dim` components: numbers, expressions of x, y, z, t, or null (free).
+// `at`, when given, receives where each component was written.
 std::array<std::optional<std::string>, 3> parse_components(Section& s, const std::string& key,
-                                                           int dim);
+                                                           int dim,
+                                                           std::array<DeckPlace, 3>* at = nullptr);
 TimeFunction parse_time(std::optional<Section> s);
 // A material mapping's poisson_ratio under a bond-based model: only its fixed value nu_bb
 // (`whose`: words naming the material in the message, e.g. "of every block "); returns it.

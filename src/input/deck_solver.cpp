@@ -50,6 +50,16 @@ void parse_solver(Section& top, Deck& dk) {
                             "multirate_ratio", "allow_unstable_time_step"})
         if (s.has(k))
           s.fail(k, "a static solve has no time stepping; remove this key or use type: explicit");
+      // Without a held displacement the body's rigid motions make the stiffness singular.
+      bool held = false;
+      for (const MotionSpec& ms : dk.motions)
+        held = held || (ms.kind == MotionSpec::Kind::Displacement &&
+                        std::any_of(ms.component.begin(), ms.component.end(),
+                                    [](const auto& c) { return c.has_value(); }));
+      if (!held)
+        s.fail("type", "a static solve needs boundary_conditions that prescribe displacements "
+                       "(the body's rigid motions make the stiffness singular otherwise); for a "
+                       "free body use type: explicit or relaxation");
       dk.damage = false;
     } else {
       if (s.has("time_step")) dk.time_step = s.number("time_step", std::nullopt, positive());
@@ -179,6 +189,7 @@ void parse_adapt(Section& top, Deck& dk) {
     for (Section z : a->list("initial_refinement")) {
       InitialRefinement ir;
       ir.region = parse_region(z.section("region"), dk.dim);
+      dk.initial_refinement_at.push_back(z.place("region"));
       ir.level = static_cast<int>(z.integer("level", std::nullopt, [](long v) {
         return (v >= 1 && v <= 6) ? std::string() : std::string("must be in 1 ... 6");
       }));
@@ -303,7 +314,10 @@ void parse_adapt(Section& top, Deck& dk) {
     if (ad.enabled && dk.solver != Deck::SolverType::Explicit)
       a->fail("", "refinement triggers work with the explicit solver only; static and relaxation "
                   "runs take initial_refinement zones");
-    if (a->has("region")) ad.region = parse_region(a->section("region"), dk.dim);
+    if (a->has("region")) {
+      ad.region = parse_region(a->section("region"), dk.dim);
+      dk.adapt_region_at = a->place("region");
+    }
     a->finish();
   }
 }

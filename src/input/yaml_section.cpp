@@ -26,6 +26,13 @@ void Section::fail_at(const YAML::Node& n, const std::string& key,
   throw DeckError(file_, line, col, key.empty() ? path_ : key_path(key), message);
 }
 
+DeckPlace Section::place(const std::string& key) const {
+  const YAML::Node n = (!key.empty() && node_.IsMap() && node_[key]) ? node_[key] : node_;
+  const YAML::Mark m = n.Mark();
+  return {key.empty() ? path_ : key_path(key), m.line >= 0 ? m.line + 1 : 0,
+          m.column >= 0 ? m.column + 1 : 0};
+}
+
 bool Section::has(const std::string& key) const {
   read_.insert(key);  // asking for a key makes it a known key of this section
   return node_.IsMap() && node_[key] && !node_[key].IsNull();
@@ -176,10 +183,12 @@ std::vector<std::vector<double>> Section::points(const std::string& key, std::si
     std::vector<double> q;
     for (const auto& e : p) {
       try {
+        if (!e.IsScalar()) throw YAML::BadConversion(e.Mark());
         q.push_back(e.as<double>());
       } catch (const YAML::Exception&) {
         fail_at(e, key, "expected a number, got " + describe(e));
       }
+      if (!std::isfinite(q.back())) fail_at(e, key, "expected a finite coordinate, got " + describe(e));
     }
     out.push_back(q);
   }

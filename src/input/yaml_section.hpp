@@ -21,6 +21,7 @@ class Section {
   const std::string& path() const { return path_; }
   const std::string& file() const { return file_; }
   std::string key_path(const std::string& key) const;
+  DeckPlace place(const std::string& key = "") const;  // of the key, or of this section
 
   // Numbers. `check` returns an empty string when the value is allowed, else what is allowed.
   double number(const std::string& key, std::optional<double> fallback = std::nullopt,

@@ -21,7 +21,7 @@ struct RefinementEvent;
 
 // What the run loop knows when it ends, for the summary.
 struct RunTotals {
-  std::string status = "completed";  // completed | diverged | interrupted
+  std::string status = "completed";  // completed | diverged | unstable_time_step | interrupted
   bool restarted = false;
   long restarted_from_step = 0;
   int interrupted_by = 0;  // signal

@@ -32,6 +32,9 @@ struct RunResult {
   double wall_s = 0, bond_evals_per_s = 0;
   std::optional<std::size_t> multirate_slow_nodes;
   std::optional<DivergenceReport> divergence;
+  // A refinement event left the time step above the refined rows' stable step: the run stopped
+  // after that step, with its outputs finished.
+  std::optional<std::string> unstable_time_step;
   std::optional<CrackReport> crack;
   std::string pvd_path, history_path;  // empty when nothing was written
   nlohmann::json summary;

@@ -181,6 +181,12 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
   std::optional<ArchiveReader> state;
   if (opt.restart) {
     restart = read_checkpoint(*opt.restart, dk);
+    if (restart->info.step >= ts.steps)
+      throw DeckError(dk.file, 0, 0, dk.steps ? "solver.steps" : "solver.end_time",
+                      fmt::format("the run would end at step {} (t = {:.6e} s), not past its "
+                                  "checkpoint's step {} (t = {:.6e} s): a restart continues a run, "
+                                  "so give a later end",
+                                  ts.steps, ts.steps * ts.dt, restart->info.step, restart->info.time));
     state.emplace(restart->payload, restart->path);
     std::optional<DeckError> failed;
     try {
@@ -340,11 +346,16 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
     try {
       ok = adaptor ? adaptor->step() : vv.step();
     } catch (const UnstableAfterRefinement& e) {
-      report_events();
-      throw DeckError(dk.file, 0, 0, "solver.time_step", e.what());
+      res.unstable_time_step = e.what();
     }
     tot.solver_s += std::chrono::duration<double>(clock::now() - t0).count();
     report_events();
+    if (res.unstable_time_step) {
+      // The state is sound; only the next step would not be: its outputs are kept.
+      observe(s, true);
+      res.steps_done = s;
+      break;
+    }
     if (!ok) {
       res.diverged = true;
       break;
@@ -375,7 +386,10 @@ RunResult run_simulation(const Deck& dk, const RunOptions& opt) {
   vv.sync_state();  // the outputs and the returned model read every node
 
   tot.wall_s = std::chrono::duration<double>(clock::now() - t_start).count();
-  tot.status = res.diverged ? "diverged" : res.interrupted ? "interrupted" : "completed";
+  tot.status = res.diverged             ? "diverged"
+               : res.unstable_time_step ? "unstable_time_step"
+               : res.interrupted        ? "interrupted"
+                                        : "completed";
   tot.interrupted_by = res.interrupted;
   tot.steps_done = res.steps_done;
   for (auto& o : observers) o->finish(view, res);

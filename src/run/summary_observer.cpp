@@ -164,6 +164,7 @@ void SummaryObserver::finish(RunView& view, RunResult& res) {
                        {"position", {ns.x[0][e.node], ns.x[1][e.node], ns.x[2][e.node]}},
                        {"reason", e.what}};
   }
+  if (res.unstable_time_step) j["unstable_time_step"] = *res.unstable_time_step;
   for (const Impactor& im : m.impactors) {
     auto vec = [&](const Vec3& v) { return std::vector<double>(v.begin(), v.begin() + ns.dim); };
     j["impactors"].push_back({{"center_m", vec(im.center)},

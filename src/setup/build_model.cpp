@@ -179,8 +179,15 @@ Model build_model(const Deck& dk, const FamilyBuild& families) {
   m.holes = dk.grid.holes;
   m.body_clip = dk.grid.clip;
 
-  for (std::size_t r = 0; r < dk.no_fail.size(); ++r)
-    for (std::uint32_t i : select(ns, dk.no_fail[r], tol)) ns.flags[i] |= kNoFail;
+  for (std::size_t r = 0; r < dk.no_fail.size(); ++r) {
+    const std::vector<std::uint32_t> sel = select(ns, dk.no_fail[r], tol);
+    if (sel.empty())
+      throw DeckError(dk.file,
+                      r < dk.no_fail_at.size() ? dk.no_fail_at[r]
+                                               : DeckPlace{"damage.no_fail[" + std::to_string(r) + "]"},
+                      "the region selects no nodes");
+    for (std::uint32_t i : sel) ns.flags[i] |= kNoFail;
+  }
   mark_unbreakable_bonds(ns, m.bonds);
   index_pairs(m.bonds, ns, m.formulation.dual_horizon, m.formulation.state_based());
 
@@ -193,7 +200,7 @@ Model build_model(const Deck& dk, const FamilyBuild& families) {
     bl.name = ls.name;
     bl.nodes = select(ns, ls.region, tol);
     if (bl.nodes.empty())
-      throw DeckError(dk.file, 0, 0, ls.name + ".region", "the region selects no nodes");
+      throw DeckError(dk.file, ls.region_at, "the region selects no nodes");
     // A traction t spread over a layer of depth h acts as the body-force density t / h
     // (thesis ch. 6 loads one row of nodes). Without an explicit layer, h = (volume of the
     // selected nodes) / (area of the region's largest face), so that the total force is t times
@@ -231,9 +238,18 @@ Model build_model(const Deck& dk, const FamilyBuild& families) {
     pm.nodes = select(ns, ms.region, tol);
     pm.region = ms.region;
     if (pm.nodes.empty())
-      throw DeckError(dk.file, 0, 0, ms.name + ".region", "the region selects no nodes");
-    for (int d = 0; d < 3; ++d)
-      if (ms.component[d]) pm.component[d] = Expression(*ms.component[d]);
+      throw DeckError(dk.file, ms.region_at, "the region selects no nodes");
+    for (int d = 0; d < 3; ++d) {
+      if (!ms.component[d]) continue;
+      pm.component[d] = Expression(*ms.component[d]);
+      // A value that is not finite at the start would reach the fields unseen.
+      for (std::uint32_t i : pm.nodes)
+        if (const double v = (*pm.component[d])(ns.x[0][i], ns.x[1][i], ns.x[2][i], 0.0); !std::isfinite(v))
+          throw DeckError(dk.file, ms.component_at[d],
+                          fmt::format("'{}' is {} at t = 0 at the node ({:.6g}, {:.6g}, {:.6g}) of "
+                                      "'{}'; a prescribed value must be finite",
+                                      *ms.component[d], v, ns.x[0][i], ns.x[1][i], ns.x[2][i], ms.name));
+    }
     for (std::uint32_t i : pm.nodes) ns.flags[i] |= kBoundary;
     m.motions.push_back(std::move(pm));
   }
@@ -256,6 +272,18 @@ Model build_model(const Deck& dk, const FamilyBuild& families) {
         throw DeckError(dk.file, 0, 0, "initial_conditions",
                         "an initial field is not finite at node " + std::to_string(i));
   ns.sync_all_current();
+  {
+    for (std::size_t k = 0; k < dk.adapt.initial.size(); ++k)
+      if (select(ns, dk.adapt.initial[k].region, tol).empty())
+        throw DeckError(dk.file,
+                        k < dk.initial_refinement_at.size()
+                            ? dk.initial_refinement_at[k]
+                            : DeckPlace{"adapt.initial_refinement[" + std::to_string(k) + "].region"},
+                        "the region selects no nodes: the zone would refine nothing");
+    if (dk.adapt.region && select(ns, *dk.adapt.region, tol).empty())
+      throw DeckError(dk.file, dk.adapt_region_at.value_or(DeckPlace{"adapt.region"}),
+                      "the region selects no nodes: nothing could ever be refined");
+  }
   if (AdaptSpec spec = dk.adapt; !(spec.initial = setup_zones(m, dk.adapt)).empty())
     apply_initial_refinement(m, spec);
   return m;
