@@ -26,7 +26,7 @@ check blocks_no_fracture.yaml "blocks_no_fracture.yaml:6:15: key 'blocks[0].mate
 check ghost_dual_horizon.yaml "ghost_dual_horizon.yaml:5:41: key 'adapt.ghost_correction': the correction acts on each row's own force"
 check ghost_static.yaml "ghost_static.yaml:11:21: key 'adapt.ghost_correction': the static solver assembles the bond stiffness directly"
 # run refuses a time step above the finest level's stable step; so must check.
-check adapt_time_step.yaml "adapt_time_step.yaml: key 'solver.time_step': 1.5e-07 s exceeds the stable step expected at refinement level 1"
+check adapt_time_step.yaml "adapt_time_step.yaml:4:21: key 'solver.time_step': 1.5e-07 s exceeds the stable step expected at refinement level 1"
 check list_key.yaml "list_key.yaml:2:1: a key must be a plain name"
 check empty_key.yaml "empty_key.yaml:2:3: a key must be a plain name"
 check end_time_huge.yaml "end_time_huge.yaml: key 'solver.end_time': gives inf steps"

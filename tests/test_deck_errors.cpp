@@ -303,8 +303,6 @@ TEST(DeckErrors, EveryLoaderCheckRefusesItsCaseNamingTheKey) {
       {{"output.directory=''"}, "output.directory", "must name a folder"},
       {{"cracks.0.segment=[[.nan, 0.02], [0.05, 0.02]]"}, "cracks[0].segment", "finite"},
       {{"cracks.0.segment=[[0, 0.02], [.inf, 0.02]]"}, "cracks[0].segment", "finite"},
-      {{"solver.type=static", "solver.end_time=null"}, "solver.type",
-       "prescribe displacements"},
       {{"loads=[{name: top, type: traction, region: {box: {min: [0, 0.039], max: [0.1, 0.04]}}, "
         "value: [0, 1.0e6]}, {name: top, type: traction, region: {box: {min: [0, 0], max: [0.1, "
         "0.001]}}, value: [0, -1.0e6]}]"}, "loads[1].name", "another load is named 'top'"},
@@ -351,12 +349,13 @@ TEST(DeckErrors, ARepeatedKeyOrASecondDocumentIsRefusedWithItsLine) {
 }
 
 // What only the grid can tell: a region that selects no node, a prescribed value that is not
-// finite on its nodes at the start. Each names its key and the line it was written on.
+// finite on its nodes at the start, a pre-crack inside a hole. Each names its key and the line it was written on.
 TEST(DeckErrors, TheGridRefusesEmptyRegionsAndNonFiniteMotionsNamingTheLine) {
   const std::string base =
       "model: {dimension: 2, plane: stress}\n"                                              // 1
       "material: {youngs_modulus: 72.0e9, density: 2440, fracture_energy: 135}\n"           // 2
-      "discretization: {spacing: 0.001, body: {box: {min: [0, 0], max: [0.02, 0.01]}}}\n"    // 3
+      "discretization: {spacing: 0.001, body: {box: {min: [0, 0], max: [0.02, 0.01]}}, "
+      "holes: [{disk: {center: [0.015, 0.005], radius: 0.002}}]}\n"                         // 3
       "boundary_conditions:\n"                                                              // 4
       "  - name: pull\n"                                                                    // 5
       "    region: {box: {min: [0.019, 0], max: [0.02, 0.01]}}\n"                            // 6
@@ -389,6 +388,8 @@ TEST(DeckErrors, TheGridRefusesEmptyRegionsAndNonFiniteMotionsNamingTheLine) {
        "nothing could ever be refined"},
       {"[0.009, 0.004], max: [0.011, 0.006]", "[0.3, 0.3], max: [0.4, 0.4]",
        "adapt.initial_refinement[0].region", 16, "refine nothing"},
+      {"solver: {steps: 2}", "cracks: [{segment: [[0.0145, 0.005], [0.0155, 0.005]]}]\nsolver: {steps: 2}",
+       "cracks[0]", 17, "cuts no bond"},
   };
   for (const Row& r : rows) {
     SCOPED_TRACE(r.to);

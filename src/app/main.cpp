@@ -47,6 +47,7 @@ std::string restart_settings(const std::vector<std::string>& overrides) {
 int check(const std::string& path, const std::vector<std::string>& overrides,
           const std::string& nodes_csv) {
   const Deck dk = load_deck(path, overrides);
+  if (dk.solver == Deck::SolverType::Static) require_held_displacements(dk);
   const Model m = build_model(dk);
   if (!nodes_csv.empty()) {
     // The discretization as a point cloud (discretization.body.points), shortest round-trip

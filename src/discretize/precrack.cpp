@@ -6,10 +6,14 @@
 namespace periadapt {
 
 std::size_t apply_precracks(const NodeSet& nodes, BondFamilies& bonds,
-                            const std::vector<PreCrack>& cracks, const std::vector<char>* rows) {
-  std::size_t cut = 0;
+                            const std::vector<PreCrack>& cracks, const std::vector<char>* rows,
+                            std::vector<std::size_t>* per_crack) {
+  std::size_t total = 0;
   const std::size_t n = nodes.size();
-  for (const PreCrack& c : cracks) {
+  if (per_crack) per_crack->assign(cracks.size(), 0);
+  for (std::size_t ci = 0; ci < cracks.size(); ++ci) {
+    const PreCrack& c = cracks[ci];
+    std::size_t cut = 0;
     // Only nodes within one horizon of the crack's bounding box can own a crossing bond.
     Box bb;
     const int np = c.planar3d ? 4 : 2;
@@ -41,8 +45,10 @@ std::size_t apply_precracks(const NodeSet& nodes, BondFamilies& bonds,
         }
       }
     }
+    if (per_crack) (*per_crack)[ci] = cut;
+    total += cut;
   }
-  return cut;
+  return total;
 }
 
 }  // namespace periadapt

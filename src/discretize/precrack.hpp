@@ -17,9 +17,10 @@ struct PreCrack {
 
 // Breaks the crossing bonds; returns the number of directed bond entries broken. `rows`
 // (optional): only the rows of flagged nodes (a refinement event's rebuilt rows; the others keep
-// their cut bonds).
+// their cut bonds). `per_crack` (optional) receives each crack's count of the bonds it broke.
 std::size_t apply_precracks(const NodeSet& nodes, BondFamilies& bonds,
                             const std::vector<PreCrack>& cracks,
-                            const std::vector<char>* rows = nullptr);
+                            const std::vector<char>* rows = nullptr,
+                            std::vector<std::size_t>* per_crack = nullptr);
 
 }  // namespace periadapt

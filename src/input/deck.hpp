@@ -117,6 +117,8 @@ struct Deck {
   bool damage = true;
   std::vector<Shape> no_fail;
   std::vector<DeckPlace> no_fail_at;
+  std::vector<DeckPlace> crack_at;
+  DeckPlace solver_type_at{"solver.type"};
   std::vector<DeckPlace> initial_refinement_at;  // adapt.initial_refinement[k].region
   std::optional<DeckPlace> adapt_region_at;
   PdroSpec pdro;
@@ -134,6 +136,7 @@ struct Deck {
   double rebalance_threshold = 0.10;  // distributed runs: repartition past this imbalance
   bool owned_integration = true;      // distributed explicit runs: each rank advances its region
   std::optional<double> time_step;
+  DeckPlace time_step_at{"solver.time_step"};
   double safety = 0.8;
   bool allow_unstable_time_step = false;
   // Multi-rate stepping: nodes whose own stable step allows k dt (k <= multirate_ratio) take it

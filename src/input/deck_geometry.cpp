@@ -156,6 +156,7 @@ void parse_discretization_and_cracks(Section& top, Deck& dk) {
     }
     c.finish();
     dk.cracks.push_back(pc);
+    dk.crack_at.push_back(c.place());
   }
 }
 

@@ -50,19 +50,13 @@ void parse_solver(Section& top, Deck& dk) {
                             "multirate_ratio", "allow_unstable_time_step"})
         if (s.has(k))
           s.fail(k, "a static solve has no time stepping; remove this key or use type: explicit");
-      // Without a held displacement the body's rigid motions make the stiffness singular.
-      bool held = false;
-      for (const MotionSpec& ms : dk.motions)
-        held = held || (ms.kind == MotionSpec::Kind::Displacement &&
-                        std::any_of(ms.component.begin(), ms.component.end(),
-                                    [](const auto& c) { return c.has_value(); }));
-      if (!held)
-        s.fail("type", "a static solve needs boundary_conditions that prescribe displacements "
-                       "(the body's rigid motions make the stiffness singular otherwise); for a "
-                       "free body use type: explicit or relaxation");
+      dk.solver_type_at = s.place("type");
       dk.damage = false;
     } else {
-      if (s.has("time_step")) dk.time_step = s.number("time_step", std::nullopt, positive());
+      if (s.has("time_step")) {
+        dk.time_step = s.number("time_step", std::nullopt, positive());
+        dk.time_step_at = s.place("time_step");
+      }
       dk.safety = s.number("safety_factor", 0.8, [](double v) {
         return (v > 0 && v <= 1) ? std::string() : std::string("must be in (0, 1]");
       });
@@ -301,9 +295,13 @@ void parse_adapt(Section& top, Deck& dk) {
     });
     ad.enabled = ad.energy_fraction || ad.stretch_fraction || ad.damage_trigger;
     if (!ad.enabled && ad.initial.empty())
-      a->fail("", "give at least one trigger (stretch_trigger: fraction of the critical stretch, "
-                  "energy_trigger: fraction of W_max, damage_trigger: true) or an "
-                  "initial_refinement zone");
+      a->fail("", dk.solver == Deck::SolverType::Explicit
+                      ? "give at least one trigger (stretch_trigger: fraction of the critical "
+                        "stretch, energy_trigger: fraction of W_max, damage_trigger: true) or an "
+                        "initial_refinement zone"
+                      : "static and relaxation runs refine only initial_refinement zones (the "
+                        "automatic profile and the triggers act between time steps of explicit "
+                        "runs): give the zones, or use solver.type: explicit");
     for (const char* key : {"refine_crack_tips", "refine_motions"})
       if (a->has(key) && a->boolean(key, false) && !ad.enabled)
         a->fail(key, "refines before the run for a run's triggers (explicit runs); without a "

@@ -109,13 +109,13 @@ TimeStepChoice choose_time_step(const Deck& dk, const Model& m) {
   }
   if (dk.time_step) {
     if (*dk.time_step > s.dt && !dk.allow_unstable_time_step)
-      throw DeckError(dk.file, 0, 0, "solver.time_step",
+      throw DeckError(dk.file, dk.time_step_at,
                       fmt::format("{:.4g} s exceeds the stable time step {:.4g} s (Silling-Askari "
                                   "bound, limited by node {}); use a smaller value or set "
                                   "solver.allow_unstable_time_step: true",
                                   *dk.time_step, s.dt, s.node));
     if (*dk.time_step > s.dt * c.level_ratio * (1 + 1e-9) && !dk.allow_unstable_time_step)
-      throw DeckError(dk.file, 0, 0, "solver.time_step",
+      throw DeckError(dk.file, dk.time_step_at,
                       fmt::format("{:.4g} s exceeds the stable step expected at refinement level "
                                   "{} (about {:.4g} s = {:.4g} x the level-0 bound); lower it, "
                                   "leave it out (the default accounts for the finest level), "

@@ -4,6 +4,7 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -48,7 +49,19 @@ void refuse_beyond_elastic_branch(const Deck& dk, const Model& m) {
 
 }  // namespace
 
+void require_held_displacements(const Deck& dk) {
+  for (const MotionSpec& ms : dk.motions)
+    if (ms.kind == MotionSpec::Kind::Displacement &&
+        std::any_of(ms.component.begin(), ms.component.end(), [](const auto& c) { return c.has_value(); }))
+      return;
+  throw DeckError(dk.file, dk.solver_type_at,
+                  "a static solve needs boundary_conditions that prescribe displacements (the "
+                  "body's rigid motions make the stiffness singular otherwise); for a free body "
+                  "use type: explicit or relaxation");
+}
+
 RunResult run_static(const Deck& dk, const RunOptions& opt) {
+  require_held_displacements(dk);
   using clock = std::chrono::steady_clock;
   const auto t_start = clock::now();
   RunResult res;

@@ -8,4 +8,9 @@ namespace periadapt {
 
 RunResult run_static(const Deck& deck, const RunOptions& opt);
 
+// A static deck must prescribe some displacement: without one the body's rigid motions make the
+// stiffness singular (a subtler lack is found by the solve). Throws DeckError; `check` and
+// run_static both call it.
+void require_held_displacements(const Deck& deck);
+
 }  // namespace periadapt

@@ -169,7 +169,14 @@ Model build_model(const Deck& dk, const FamilyBuild& families) {
   apply_surface_correction(ns, m.bonds, dk.shape, p_wave_modulus(dk.dim, dk.plane, dk.E, mat.nu),
                            m.surface_correction, m.formulation.state_based(),
                            block_uniaxial_moduli(m), m.partition.rows_held ? &held : nullptr);
-  m.precrack_bonds = apply_precracks(ns, m.bonds, dk.cracks);
+  std::vector<std::size_t> cut_by;
+  m.precrack_bonds = apply_precracks(ns, m.bonds, dk.cracks, nullptr, &cut_by);
+  // A crack that cuts no bond (inside a hole, beside the body, in other units) does nothing.
+  for (std::size_t c = 0; c < cut_by.size(); ++c)
+    if (mpi::max(static_cast<long>(cut_by[c])) == 0)
+      throw DeckError(dk.file, c < dk.crack_at.size() ? dk.crack_at[c] : DeckPlace{"cracks[" + std::to_string(c) + "]"},
+                      "the pre-crack cuts no bond: it lies where the body has no nodes (a hole, "
+                      "outside the body) or between nodes without crossing a bond");
   update_damage_weights(ns, m.bonds);
   m.quadrature = qs;
   m.cracks = dk.cracks;
