@@ -74,4 +74,15 @@ parts=$(ls "$tmp" | grep -c '\.part$')
   && echo "ok   adapt_unstable_after_event.yaml: $out" ||
   { echo "FAIL adapt_unstable_after_event.yaml: rc $rc, status $status, $parts .part files: $out"; fail=1; }
 rm -rf "$tmp"
+# With solver.allow_unstable_time_step the user takes that step knowingly: the event does not
+# stop the run (the divergence check would, were it to blow up).
+tmp=$(mktemp -d)
+out=$("$bin" run "$dir/adapt_unstable_after_event.yaml" --out "$tmp" --quiet \
+      --set solver.allow_unstable_time_step=true 2>&1); rc=$?
+status=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["status"])' "$tmp/summary.json" 2>&1)
+[[ "$out" != *"made the time step unstable"* && ( $rc -eq 0 && "$status" == completed ||
+   $rc -eq 3 && "$status" == diverged ) ]] \
+  && echo "ok   adapt_unstable_after_event.yaml with allow_unstable_time_step: rc $rc, $status" ||
+  { echo "FAIL adapt_unstable_after_event.yaml with allow_unstable_time_step: rc $rc, $status: $out"; fail=1; }
+rm -rf "$tmp"
 exit $fail

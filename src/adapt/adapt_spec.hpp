@@ -38,6 +38,9 @@ inline constexpr double kDefaultStretchTrigger = 0.5;
 
 struct AdaptSpec {
   bool enabled = false;
+  // solver.allow_unstable_time_step: an event that leaves the step above the refined rows' bound
+  // goes on (the divergence check stops the run if it blows up) instead of stopping it.
+  bool allow_unstable_step = false;
   NodeGeneration method = NodeGeneration::B;
   std::vector<InitialRefinement> initial;  // refined at t = 0
   // Refined to max_level at t = 0 (adapt/setup_zones.hpp): the fronts of the deck's pre-cracks,

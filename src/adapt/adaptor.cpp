@@ -212,7 +212,7 @@ void Adaptor::refine(const std::vector<std::uint32_t>& parents, std::size_t iden
   // Reported once the event is complete (forces refreshed, partition current), so that the
   // run can stop with outputs of a sound state.
   std::string unstable;
-  if (vv_.dt() > s.dt * (1 + 1e-9))
+  if (vv_.dt() > s.dt * (1 + 1e-9) && !spec_.allow_unstable_step)
     unstable = fmt::format(
         "refinement at step {} (t = {:.4e} s) made the time step unstable: dt = {:.4e} s exceeds "
         "the stable step {:.4e} s of the refined grid (node {}, level {}, x = [{:.6g}, {:.6g}, "

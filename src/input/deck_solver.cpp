@@ -179,6 +179,7 @@ void parse_adapt(Section& top, Deck& dk) {
   // --- adaptive grid refinement and scaling
   if (auto a = top.optional_section("adapt")) {
     AdaptSpec& ad = dk.adapt;
+    ad.allow_unstable_step = dk.allow_unstable_time_step;
     int initial_top = 0;
     for (Section z : a->list("initial_refinement")) {
       InitialRefinement ir;
