@@ -3,7 +3,7 @@
 set -u
 bin="$1"; dir="$2"; fail=0
 check() {  # deck expected-substring
-  out=$("$bin" check "$dir/$1" 2>&1); rc=$?
+  out=$(timeout 60 "$bin" check "$dir/$1" 2>&1); rc=$?  # a hang is a finding too
   if [[ $rc -ne 2 ]]; then echo "FAIL $1: exit code $rc (want 2): $out"; fail=1; return; fi
   if [[ "$out" != *"$2"* ]]; then echo "FAIL $1: message lacks '$2': $out"; fail=1; return; fi
   echo "ok   $1: $out"
@@ -15,6 +15,7 @@ check overlay_dual_horizon.yaml "overlay_dual_horizon.yaml:5:3: key 'damage': th
 check overlay_sampling.yaml "overlay_sampling.yaml:5:29: key 'damage.overlay.sampling': 'everywhere' is not allowed; allowed: three_pairs, whole_bond"
 check multirate_lps.yaml "multirate_lps.yaml:7:14: key 'solver.multirate': multi-rate stepping needs row-local forces: formulation: pmb"
 check lattice_lps.yaml "lattice_lps.yaml:6:29: key 'discretization.micromodulus_calibration': lattice calibrates bond-based micromoduli"
+check yaml_comma_line.yaml "yaml_comma_line.yaml: a deck is a YAML mapping"
 check static_free.yaml "static_free.yaml:8:16: key 'solver.type': a static solve needs boundary_conditions that prescribe displacements"
 check contact_static.yaml "contact_static.yaml:9:12: key 'contact.enabled': contact forces are for explicit runs"
 check impactor_axis.yaml "impactor_axis.yaml:9:78: key 'impactors[0].axis': a sphere has no length or axis"

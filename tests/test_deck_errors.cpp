@@ -342,10 +342,12 @@ TEST(DeckErrors, ARepeatedKeyOrASecondDocumentIsRefusedWithItsLine) {
                            "  - {segment: [[0, 0.02], [0.05, 0.02]], segment: [[0, 0.01], [0.05, 0.01]]}\n"));
   EXPECT_EQ(e.key(), "cracks[0].segment");
   e = expect_error(std::string(kGood) + "---\noutput: {vtu_snapshots: 10}\n");
-  EXPECT_EQ(e.line(), 16);
+  EXPECT_EQ(e.line(), 15);
   EXPECT_TRUE(contains(e, "second YAML document")) << e.what();
   // A document marker before the deck, or a trailing one, leaves one document.
   EXPECT_NO_THROW(parse_deck(std::string("---\n") + kGood + "---\n", "good.yaml"));
+  e = expect_error(std::string(kGood) + "...\n# the end\noutput: {vtu_snapshots: 10}\n");
+  EXPECT_EQ(e.line(), 15);
 }
 
 // What only the grid can tell: a region that selects no node, a prescribed value that is not

@@ -100,19 +100,19 @@ void update_ghost_table(Model& m) {
       for (int d = 0; d < 3; ++d) cur_saved[3 * q + d] = ns.cur[4 * std::size_t{moved[q]} + d];
     for (std::size_t q = 0; q < rows.size(); ++q)
       for (int d = 0; d < 3; ++d) f_saved[3 * q + d] = ns.f[d][rows[q]];
-    // The rows' forces at the reference positions and under h of each unit strain component,
-    // from the material alone: G = (F(h) - F(0)) / h, to O(h) (F(0) is round-off, or a thermal
-    // strain's force).
+    // The rows' forces under +-h of each unit strain component, from the material alone:
+    // G = (F(h) - F(-h)) / 2h. Central, so that the force's second-order part (the same for a
+    // strain and its mirror image, while the first-order part changes sign with the shear) drops
+    // out: one-sided, it left mirror images' responses 1e-6 - 1e-4 apart; a thermal strain's
+    // force at zero strain drops out too.
     constexpr double h = 1e-6;
-    auto pass_at = [&](int c, double* out, double scale) {
+    auto pass_at = [&](int c, double amount, double* out, double scale) {
       int p = 0, q = 0;
-      if (c >= 0) component(D, c, p, q);
+      component(D, c, p, q);
       for (std::uint32_t i : moved) {
         double y[3] = {ns.x[0][i], ns.x[1][i], ns.x[2][i]};
-        if (c >= 0) {
-          y[p] += h * ns.x[q][i];
-          if (p != q) y[q] += h * ns.x[p][i];
-        }
+        y[p] += amount * ns.x[q][i];
+        if (p != q) y[q] += amount * ns.x[p][i];
         for (int d = 0; d < 3; ++d) ns.cur[4 * std::size_t{i} + d] = y[d];
       }
       ForcePass pass;
@@ -120,14 +120,12 @@ void update_ghost_table(Model& m) {
       if (state) pass.dilatation_rows = &dil;
       material_forces(ns, m.bonds, material_context(m), pass);
       for (std::size_t r = 0; r < rows.size(); ++r)
-        for (int d = 0; d < D; ++d) out[r * C * 3 + d] += scale * ns.f[d][rows[r]] / h;
+        for (int d = 0; d < D; ++d) out[r * C * 3 + d] += scale * ns.f[d][rows[r]];
     };
-    std::vector<double> F0(rows.size() * C * 3, 0.0);
-    pass_at(-1, F0.data(), 1.0);
-    for (int c = 0; c < C; ++c) pass_at(c, G.data() + c * 3, 1.0);
-    for (std::size_t r = 0; r < rows.size(); ++r)
-      for (int c = 0; c < C; ++c)
-        for (int d = 0; d < D; ++d) G[(r * C + c) * 3 + d] -= F0[r * C * 3 + d];
+    for (int c = 0; c < C; ++c) {
+      pass_at(c, h, G.data() + c * 3, 0.5 / h);
+      pass_at(c, -h, G.data() + c * 3, -0.5 / h);
+    }
     for (std::size_t q = 0; q < moved.size(); ++q)
       for (int d = 0; d < 3; ++d) ns.cur[4 * std::size_t{moved[q]} + d] = cur_saved[3 * q + d];
     for (std::size_t q = 0; q < rows.size(); ++q)
