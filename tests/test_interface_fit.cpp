@@ -183,24 +183,33 @@ TEST(GhostCorrection, RefusedWhereItDoesNotApply) {
   EXPECT_NE(history.find("ghost_correction"), std::string::npos) << history;
 }
 
+namespace {
+
+// An unbreakable 2D plate, x from x0 to x1, 16 mm high, 1 mm spacing, one step.
+DeckBuilder elastic_plate(const char* formulation, double x0, double x1) {
+  DeckBuilder d;
+  d.set("model.dimension", 2)
+      .set("model.plane", "stress")
+      .set("model.formulation", formulation)
+      .set("material.youngs_modulus", 1.0e9)
+      .set("material.poisson_ratio", 1.0 / 3.0)
+      .set("material.density", 1000.0)
+      .set("discretization.spacing", 0.001)
+      .set("discretization.body.box.min", std::vector<double>{x0, 0.0})
+      .set("discretization.body.box.max", std::vector<double>{x1, 0.016})
+      .set("damage.enabled", false)
+      .set("solver.steps", 1);
+  return d;
+}
+
+}  // namespace
+
 // An event recomputes the rows it rebuilt (state-based: and the rows that reach them); the
 // table then equals one built whole, as a restart builds it. Three events: a zone at the left
 // edge (its rows near the edge stay uncorrected), a level-2 zone inside it, one in the middle.
 TEST(GhostCorrection, TableUpdatedEventByEventEqualsTheWholeTable) {
   for (const char* formulation : {"pmb", "lps"}) {
-    DeckBuilder d;
-    d.set("model.dimension", 2)
-        .set("model.plane", "stress")
-        .set("model.formulation", formulation)
-        .set("material.youngs_modulus", 1.0e9)
-        .set("material.poisson_ratio", 1.0 / 3.0)
-        .set("material.density", 1000.0)
-        .set("discretization.spacing", 0.001)
-        .set("discretization.body.box.min", std::vector<double>{0.0, 0.0})
-        .set("discretization.body.box.max", std::vector<double>{0.024, 0.016})
-        .set("damage.enabled", false)
-        .set("solver.steps", 1);
-    Model m = build_model(d.build("plate"));
+    Model m = build_model(elastic_plate(formulation, 0.0, 0.024).build("plate"));
     m.ghost.enabled = true;
     update_ghost_table(m);
     AdaptSpec spec;
@@ -230,19 +239,7 @@ TEST(GhostCorrection, TableUpdatedEventByEventEqualsTheWholeTable) {
 TEST(GhostCorrection, TableOfAMirrorSymmetricGridIsMirrorSymmetric) {
   for (const char* formulation : {"pmb", "lps"}) {
     SCOPED_TRACE(formulation);
-    DeckBuilder d;
-    d.set("model.dimension", 2)
-        .set("model.plane", "stress")
-        .set("model.formulation", formulation)
-        .set("material.youngs_modulus", 1.0e9)
-        .set("material.poisson_ratio", 1.0 / 3.0)
-        .set("material.density", 1000.0)
-        .set("discretization.spacing", 0.001)
-        .set("discretization.body.box.min", std::vector<double>{-0.012, 0.0})
-        .set("discretization.body.box.max", std::vector<double>{0.012, 0.016})
-        .set("damage.enabled", false)
-        .set("solver.steps", 1);
-    Model m = build_model(d.build("plate"));
+    Model m = build_model(elastic_plate(formulation, -0.012, 0.012).build("plate"));
     m.ghost.enabled = true;
     AdaptSpec spec;
     spec.enabled = true;
