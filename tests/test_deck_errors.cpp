@@ -309,6 +309,12 @@ TEST(DeckErrors, EveryLoaderCheckRefusesItsCaseNamingTheKey) {
       {{"boundary_conditions=[{name: left, region: {box: {min: [0, 0], max: [0.001, 0.04]}}, "
         "velocity: [0, 0]}, {name: left, region: {box: {min: [0.099, 0], max: [0.1, 0.04]}}, "
         "velocity: [0, 0]}]"}, "boundary_conditions[1].name", "another boundary condition"},
+      {{"loads=[{name: top load, type: traction, region: {box: {min: [0, 0.039], max: [0.1, 0.04]}}, "
+        "value: [0, 1.0e6]}, {name: top_load, type: traction, region: {box: {min: [0, 0], max: [0.1, "
+        "0.001]}}, value: [0, -1.0e6]}]"}, "loads[1].name", "same history.csv columns (load_top_load"},
+      {{"boundary_conditions=[{name: left-edge, region: {box: {min: [0, 0], max: [0.001, 0.04]}}, "
+        "velocity: [0, 0]}, {name: left.edge, region: {box: {min: [0.099, 0], max: [0.1, 0.04]}}, "
+        "velocity: [0, 0]}]"}, "boundary_conditions[1].name", "same history.csv columns (bc_left_edge"},
       {{"output.load_displacement={name: nobody}"}, "output.load_displacement.name", "top left"},
       {{"output.load_displacement={name: left, component: z}"}, "output.load_displacement.component", "allowed"},
   };
@@ -392,6 +398,12 @@ TEST(DeckErrors, TheGridRefusesEmptyRegionsAndNonFiniteMotionsNamingTheLine) {
        "adapt.initial_refinement[0].region", 16, "refine nothing"},
       {"solver: {steps: 2}", "cracks: [{segment: [[0.0145, 0.005], [0.0155, 0.005]]}]\nsolver: {steps: 2}",
        "cracks[0]", 17, "cuts no bond"},
+      {"center: [0.015, 0.005], radius: 0.002", "center: [0.5, 0.5], radius: 0.002",
+       "discretization.holes[0]", 3, "removes no node"},
+      {"center: [0.015, 0.005], radius: 0.002", "center: [0.015, 0.005], radius: 0.0002",
+       "discretization.holes[0]", 3, "between the grid points"},
+      {"max: [0.02, 0.01]}}, holes", "max: [1e308, 0.01]}}, holes", "discretization.spacing", 0,
+       "discretization.body on line 3: its bounding box is 1e+308 x 0.01 m"},
   };
   for (const Row& r : rows) {
     SCOPED_TRACE(r.to);

@@ -232,6 +232,11 @@ TEST(Dynamics, DivergingRunStopsWithADiagnosis) {
   EXPECT_EQ(r.summary["status"], "diverged");
   EXPECT_GT(r.summary["divergence"]["step"].get<long>(), 0);
   EXPECT_LT(r.summary["divergence"]["node"].get<std::size_t>(), r.model.nodes.size());
+  // The energies are of one state: the last good sample's, named by its step, all finite.
+  const auto& e = r.summary["energy"];
+  EXPECT_LT(e["step"].get<long>(), r.summary["divergence"]["step"].get<long>());
+  for (const char* k : {"kinetic_J", "strain_J", "external_work_J", "time_s"})
+    EXPECT_TRUE(std::isfinite(e[k].get<double>())) << k;
 }
 
 #include "studies/bobaru_1d_wave.hpp"

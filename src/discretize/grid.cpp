@@ -14,7 +14,8 @@ double cell_volume(int dim, double dx, double thickness) {
   }
 }
 
-std::size_t generate_grid(const GridSpec& s, NodeSet& nodes) {
+std::size_t generate_grid(const GridSpec& s, NodeSet& nodes,
+                          std::vector<std::size_t>* removed_by_hole) {
   const std::size_t before = nodes.size();
   const double dx = s.spacing;
   const double vol = cell_volume(s.dim, dx, s.thickness);
@@ -23,11 +24,15 @@ std::size_t generate_grid(const GridSpec& s, NodeSet& nodes) {
   // Tolerance for points sitting on the body boundary (node-on-edge registration).
   const double tol = 1e-9 * dx;
 
+  if (removed_by_hole) removed_by_hole->assign(s.holes.size(), 0);
   auto keep = [&](const Vec3& p) {
     if (!s.body.contains(p, tol)) return false;
     if (s.clip && !s.clip->contains(p, tol)) return false;
-    for (const Shape& h : s.holes)
-      if (h.contains(p)) return false;
+    for (std::size_t k = 0; k < s.holes.size(); ++k)
+      if (s.holes[k].contains(p)) {
+        if (removed_by_hole) ++(*removed_by_hole)[k];
+        return false;
+      }
     return true;
   };
 

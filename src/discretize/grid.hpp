@@ -28,8 +28,10 @@ struct GridSpec {
 };
 
 // Appends the grid's nodes to `nodes` (volume = cell measure times thickness/area) and returns
-// how many were added.
-std::size_t generate_grid(const GridSpec& spec, NodeSet& nodes);
+// how many were added. `removed_by_hole` (optional): per hole, the grid points inside the body
+// that it removed (a point inside several holes counts for the first).
+std::size_t generate_grid(const GridSpec& spec, NodeSet& nodes,
+                          std::vector<std::size_t>* removed_by_hole = nullptr);
 
 // Cell measure of one node: dx (1D, times area), dx^2 t (2D), dx^3 (3D).
 double cell_volume(int dim, double dx, double thickness);

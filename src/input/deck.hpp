@@ -117,6 +117,8 @@ struct Deck {
   bool damage = true;
   std::vector<Shape> no_fail;
   std::vector<DeckPlace> no_fail_at;
+  std::vector<DeckPlace> holes_at;  // discretization.holes[k]
+  DeckPlace body_at{"discretization.body"};
   std::vector<DeckPlace> crack_at;
   DeckPlace solver_type_at{"solver.type"};
   std::vector<DeckPlace> initial_refinement_at;  // adapt.initial_refinement[k].region

@@ -39,6 +39,7 @@ void parse_discretization_and_cracks(Section& top, Deck& dk) {
       dk.horizon = dk.horizon_factor * g.spacing;
     }
     Section body = s.section("body");
+    dk.body_at = body.place();
     if (body.has("points")) {
       // A point cloud: the nodes as given, the body their cells' bounding box.
       std::filesystem::path file = body.text("points");
@@ -107,7 +108,10 @@ void parse_discretization_and_cracks(Section& top, Deck& dk) {
     g.pivot = s.has("rotation_pivot") ? to_vec(s.numbers("rotation_pivot", 2, 2)) : centre;
     std::string reg = s.choice("registration", {"cell_centered", "node_on_edge"}, "cell_centered");
     g.registration = reg == "cell_centered" ? Registration::CellCentered : Registration::NodeOnEdge;
-    for (Section h : s.list("holes")) g.holes.push_back(parse_region(h, dk.dim));
+    for (Section h : s.list("holes")) {
+      dk.holes_at.push_back(h.place());
+      g.holes.push_back(parse_region(h, dk.dim));
+    }
     std::string q =
         s.choice("quadrature", {"pa_pdlammps", "ipa_hybrid", "subcell", "full"}, "pa_pdlammps");
     if (q == "ipa_hybrid" && dk.dim != 2)

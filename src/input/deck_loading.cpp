@@ -9,6 +9,7 @@
 
 #include "core/expression.hpp"
 #include "input/deck_sections.hpp"
+#include "io/csv_column.hpp"
 #include "input/yaml_section.hpp"
 
 namespace periadapt::deck_sections {
@@ -21,10 +22,16 @@ void parse_loading_and_damage(Section& top, Deck& dk) {
     ls.kind = t == "traction" ? LoadSpec::Kind::Traction : LoadSpec::Kind::BodyForce;
     ls.name = l.text("name", l.path());
     for (const LoadSpec& other : dk.loads)
-      if (other.name == ls.name)
-        l.fail("name", "another load is named '" + ls.name +
-                           "'; a name labels history.csv's columns and plots, so each load needs "
-                           "its own");
+      if (csv_column_stem("", other.name) == csv_column_stem("", ls.name))
+        l.fail("name", other.name == ls.name
+                           ? "another load is named '" + ls.name +
+                                 "'; a name labels history.csv's columns and plots, so each load "
+                                 "needs its own"
+                           : "'" + ls.name + "' and another load's name '" + other.name +
+                                 "' give the same history.csv columns (load_" +
+                                 csv_column_stem("", ls.name) +
+                                 "_...: characters other than letters and digits become '_'); "
+                                 "rename one");
     ls.region = parse_region(l.section("region"), dk.dim);
     ls.region_at = l.place("region");
     ls.value = to_vec(l.numbers("value", static_cast<std::size_t>(dk.dim),
@@ -39,10 +46,16 @@ void parse_loading_and_damage(Section& top, Deck& dk) {
     MotionSpec ms;
     ms.name = b.text("name", b.path());
     for (const MotionSpec& other : dk.motions)
-      if (other.name == ms.name)
-        b.fail("name", "another boundary condition is named '" + ms.name +
-                           "'; a name labels history.csv's columns and plots, so each one needs "
-                           "its own");
+      if (csv_column_stem("", other.name) == csv_column_stem("", ms.name))
+        b.fail("name", other.name == ms.name
+                           ? "another boundary condition is named '" + ms.name +
+                                 "'; a name labels history.csv's columns and plots, so each one "
+                                 "needs its own"
+                           : "'" + ms.name + "' and another boundary condition's name '" +
+                                 other.name + "' give the same history.csv columns (bc_" +
+                                 csv_column_stem("", ms.name) +
+                                 "_...: characters other than letters and digits become '_'); "
+                                 "rename one");
     ms.region = parse_region(b.section("region"), dk.dim);
     ms.region_at = b.place("region");
     if (b.has("velocity") == b.has("displacement"))

@@ -38,6 +38,9 @@ void HistoryObserver::on_step(RunView& view, long step, bool closing) {
   const RowPartition* part = view.model.partition.active ? &view.model.partition : nullptr;
   U_ = view.strain_energy();
   K_ = kinetic_energy(ns, part);
+  W_ext_ = vv.external_work();
+  sample_step_ = step;
+  sample_time_ = vv.time();
   damaged_nodes_ = 0;
   damage_sum_ = 0;
   std::size_t active = 0;
@@ -58,7 +61,7 @@ void HistoryObserver::on_step(RunView& view, long step, bool closing) {
   const double speed = tip_ ? tip_->current_speed() : 0.0;
   out_ << fmt::format(
       "{},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{},{},{}{}{}{:.4f}\n",
-      step, vv.time(), K_, U_, vv.external_work(), K_ + U_ - vv.external_work(), vv.broken_bonds(),
+      step, vv.time(), K_, U_, W_ext_, K_ + U_ - W_ext_, vv.broken_bonds(),
       damaged_nodes_, damage_sum_, tip[0], tip[1], tip[2], speed, active,
       whole_bond_count(view.model.partition, view.model.bonds), resultants, regions,
       rank_column_ ? fmt::format("{:.4f},", view.model.partition.imbalance) : std::string(),
@@ -72,6 +75,9 @@ void HistoryObserver::save(ArchiveWriter& w) {
   w.put(U_);
   w.put(std::uint64_t{damaged_nodes_});
   w.put(damage_sum_);
+  w.put(W_ext_);
+  w.put(sample_time_);
+  w.put(std::int64_t{sample_step_});
 }
 
 void HistoryObserver::restore(ArchiveReader& r, RunView&) {
@@ -84,11 +90,15 @@ void HistoryObserver::restore(ArchiveReader& r, RunView&) {
   r.get(U_);
   damaged_nodes_ = r.get<std::uint64_t>();
   r.get(damage_sum_);
+  r.get(W_ext_);
+  r.get(sample_time_);
+  sample_step_ = static_cast<long>(r.get<std::int64_t>());
 }
 
 void HistoryObserver::finish(RunView& view, RunResult& res) {
   nlohmann::json& j = res.summary;
-  j["energy"] = {{"kinetic_J", K_}, {"strain_J", U_}, {"external_work_J", view.vv.external_work()}};
+  j["energy"] = {{"kinetic_J", K_}, {"strain_J", U_}, {"external_work_J", W_ext_},
+                 {"step", sample_step_}, {"time_s", sample_time_}};
   if (!out_.is_open()) return;
   if (view.deck.output.load_displacement)
     write_load_displacement_png(view.dir, out_.text_so_far(), *view.deck.output.load_displacement,

@@ -29,6 +29,10 @@ class HistoryObserver : public RunObserver {
   StreamedOutput out_;
   long every_, total_;
   double K_ = 0, U_ = 0, damage_sum_ = 0;
+  // The external work, step and time of the last row, so that summary.json's energies are of
+  // one state (after a divergence, the last good row's, not the diverged step's).
+  double W_ext_ = 0, sample_time_ = 0;
+  long sample_step_ = 0;
   std::size_t damaged_nodes_ = 0;
   bool rank_column_ = false;  // distributed runs: the partition's bond imbalance
 };

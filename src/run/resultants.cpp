@@ -3,24 +3,14 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cctype>
 #include <sstream>
 
 #include "core/exact_sum.hpp"
+#include "io/csv_column.hpp"
 #include "io/line_plot.hpp"
 #include "parallel/owned_sums.hpp"
 
 namespace periadapt {
-
-namespace {
-
-std::string column_name(const std::string& prefix, const std::string& name) {
-  std::string s = prefix;
-  for (char c : name) s += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
-  return s;
-}
-
-}  // namespace
 
 std::string resultant_header(const Model& m) {
   std::string h;
@@ -30,8 +20,8 @@ std::string resultant_header(const Model& m) {
       for (int d = 0; d < m.nodes.dim; ++d)
         h += fmt::format("{}{}{}_{}", base, what, axes[d], what[1] == 'f' ? "N," : "m,");
   };
-  for (const BodyLoad& l : m.loads) add(column_name("load_", l.name));
-  for (const PrescribedMotion& p : m.motions) add(column_name("bc_", p.name));
+  for (const BodyLoad& l : m.loads) add(csv_column_stem("load_", l.name));
+  for (const PrescribedMotion& p : m.motions) add(csv_column_stem("bc_", p.name));
   // Impactors: the force each exerts on the body, its position and its velocity.
   for (std::size_t k = 1; k <= m.impactors.size(); ++k)
     for (const char* what : {"_f%_N,", "_%_m,", "_v%_m_s,"})
@@ -132,7 +122,7 @@ void write_load_displacement_png(const std::string& dir, const std::string& hist
                                  bool from_origin) {
   bool is_bc = false;
   for (const PrescribedMotion& p : m.motions) is_bc = is_bc || p.name == plot.name;
-  const std::string base = column_name(is_bc ? "bc_" : "load_", plot.name);
+  const std::string base = csv_column_stem(is_bc ? "bc_" : "load_", plot.name);
   const char axis = static_cast<char>('x' + plot.component);
   const std::string fcol = fmt::format("{}_f{}_N", base, axis), ucol = fmt::format("{}_u{}_m", base, axis);
   std::istringstream in(history);

@@ -83,9 +83,21 @@ Model build_model(const Deck& dk, const FamilyBuild& families) {
   m.grid_spacing = dk.grid.spacing;
   m.horizon = dk.horizon;
   check_memory_estimate(dk);  // before any allocation
-  generate_grid(dk.grid, ns);
+  std::vector<std::size_t> removed_by_hole;
+  generate_grid(dk.grid, ns, &removed_by_hole);
   if (ns.size() == 0)
     throw DeckError(dk.file, 0, 0, "discretization", "the grid has no nodes inside the body");
+  // A hole that removes no grid point leaves the body as if it were not there (refined zones
+  // would then open it where they cut it, and nowhere else).
+  for (std::size_t k = 0; k < removed_by_hole.size(); ++k)
+    if (removed_by_hole[k] == 0)
+      throw DeckError(dk.file,
+                      k < dk.holes_at.size() ? dk.holes_at[k]
+                                             : DeckPlace{"discretization.holes[" + std::to_string(k) + "]"},
+                      fmt::format("the hole removes no node: it lies outside the body, inside "
+                                  "another hole, or between the grid points (spacing {:g} m); "
+                                  "a hole must contain at least one grid point",
+                                  dk.grid.spacing));
 
   MaterialLaw& mat = m.material;
   mat.name = dk.material_name;

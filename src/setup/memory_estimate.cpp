@@ -150,9 +150,20 @@ void check_memory_estimate(const Deck& dk) {
   const MemoryEstimate e = estimate_memory(dk);
   const std::string what = fmt::format("about {:.3g} nodes and {:.3g} bonds, {:.3g} GB", e.nodes,
                                        e.bonds, e.bytes / 1e9);
-  if (!(e.nodes <= 2147483647.0))
+  if (!(e.nodes <= 2147483647.0)) {
+    // Either the spacing or the body's size can be what is wrong: both are named.
+    std::string extent;
+    for (int d = 0; d < dk.dim; ++d)
+      extent += fmt::format("{}{:.4g}", d ? " x " : "", dk.grid.body.hi[d] - dk.grid.body.lo[d]);
     throw DeckError(dk.file, 0, 0, "discretization.spacing",
-                    "the deck asks for " + what + "; at most 2^31 nodes (raise the spacing)");
+                    "the deck asks for " + what + "; at most 2^31 nodes (raise the spacing, or " +
+                        fmt::format("check the size of {}{}: its bounding box is {} m at a "
+                                    "spacing of {:g} m; lengths are in metres)",
+                                    dk.body_at.key,
+                                    dk.body_at.line > 0 ? fmt::format(" on line {}", dk.body_at.line)
+                                                        : std::string(),
+                                    extent, dk.grid.spacing));
+  }
   const double limit = dk.memory_limit_gb ? *dk.memory_limit_gb * 1e9 : e.available;
   if (limit > 0 && !(e.bytes <= limit))
     throw DeckError(dk.file, 0, 0,
