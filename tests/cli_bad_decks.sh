@@ -75,6 +75,16 @@ parts=$(ls "$tmp" | grep -c '\.part$')
   && echo "ok   adapt_unstable_after_event.yaml: $out" ||
   { echo "FAIL adapt_unstable_after_event.yaml: rc $rc, status $status, $parts .part files: $out"; fail=1; }
 rm -rf "$tmp"
+# At the default safety factor the default step holds through every event: the moments
+# correction's refits keep the refined rows' bound at the uniform fine grid's.
+tmp=$(mktemp -d)
+out=$("$bin" run "$dir/adapt_unstable_after_event.yaml" --out "$tmp" --quiet \
+      --set solver.safety_factor=0.8 2>&1); rc=$?
+status=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["status"])' "$tmp/summary.json" 2>&1)
+[[ $rc -eq 0 && "$status" == completed ]] \
+  && echo "ok   adapt_unstable_after_event.yaml at safety factor 0.8: completed" ||
+  { echo "FAIL adapt_unstable_after_event.yaml at safety factor 0.8: rc $rc, $status: $out"; fail=1; }
+rm -rf "$tmp"
 # With solver.allow_unstable_time_step the user takes that step knowingly: the event does not
 # stop the run (the divergence check would, were it to blow up).
 tmp=$(mktemp -d)

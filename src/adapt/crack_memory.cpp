@@ -150,18 +150,6 @@ std::vector<std::uint32_t> rebuild_families(Model& m, const CrackMemory& mem,
     }
     std::sort(histories.begin(), histories.end());
   }
-  // The corrected factors of the rows about to be searched again, for the moments correction's
-  // start.
-  std::vector<std::pair<std::uint64_t, float>> previous;
-  if (!global && m.surface_correction == SurfaceCorrection::Moments) {
-    for (std::size_t i = 0; i < std::min(n_before, bf.num_nodes()); ++i) {
-      if (!rebuild[i]) continue;
-      for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k)
-        previous.emplace_back((std::uint64_t{static_cast<std::uint32_t>(i)} << 32) | bf.neighbor[k],
-                              std::abs(bf.beta[k]));
-    }
-    std::sort(previous.begin(), previous.end());
-  }
   if (global) {
     const bool keeps_state = bf.keeps_state;
     bf = build_families(ns, m.quadrature);
@@ -186,7 +174,7 @@ std::vector<std::uint32_t> rebuild_families(Model& m, const CrackMemory& mem,
   else
     recorrected = correct_surface_window(ns, bf, m.quadrature, m.material.shape, modulus,
                                          m.surface_correction, m.formulation.state_based(),
-                                         block_uniaxial_moduli(m), rebuild, &previous);
+                                         block_uniaxial_moduli(m), rebuild);
   if (m.interface_fit) fit_interface_quadrature(ns, bf, m.material.shape, rebuild);
   apply_precracks(ns, bf, m.cracks, &rebuild);
   CellGrid* fgrid = nullptr;

@@ -350,7 +350,7 @@ const QuadratureEntry* find_entry(const std::vector<QuadratureEntry>& row, std::
 std::vector<std::uint32_t> correct_surface_window(
     const NodeSet& ns, BondFamilies& bf, const QuadratureSpec& quad, InfluenceShape shape,
     double M, SurfaceCorrection method, bool state_based, const std::vector<double>& block_modulus,
-    const std::vector<char>& fresh, const std::vector<std::pair<std::uint64_t, float>>* previous) {
+    const std::vector<char>& fresh) {
   if (method == SurfaceCorrection::None) return {};
   const std::size_t n = ns.size();
   std::vector<char> in(n, 0);
@@ -414,61 +414,22 @@ std::vector<std::uint32_t> correct_surface_window(
     }
     return ring;
   }
-  // Moments. Window pairs start from their old factors (symmetrized), new ones from the mean.
-  if (previous && !previous->empty()) {
-    const auto old_factor = [&](std::uint32_t i, std::uint64_t k) {
-      const std::uint64_t key = (std::uint64_t{i} << 32) | bf.neighbor[k];
-      const auto it = std::lower_bound(
-          previous->begin(), previous->end(), key,
-          [](const std::pair<std::uint64_t, float>& e, std::uint64_t v) { return e.first < v; });
-      if (it == previous->end() || it->first != key || !(bf.beta[k] > 0.0f)) return -1.0;
-      return static_cast<double>(it->second) / static_cast<double>(bf.beta[k]);
-    };
-    double sum = 0;
-    std::size_t count = 0;
-    for (std::uint32_t i : window)
-      for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {
-        const double c = old_factor(i, k);
-        if (c > 0) sum += std::log(c), ++count;
-      }
-    const double mean = count ? std::exp(sum / static_cast<double>(count)) : 1.0;
-    for (std::uint32_t i : window)
-      for (std::uint64_t k = bf.begin(i); k < bf.end(i); ++k) {
-        const std::uint32_t j = bf.neighbor[k];
-        if (!in[j]) continue;
-        std::uint64_t mirror = UINT64_MAX;
-        for (std::uint64_t h = bf.begin(j); h < bf.end(j); ++h)
-          if (bf.neighbor[h] == i) {
-            mirror = h;
-            break;
-          }
-        // A pair is set once, from its lower row; a bond without a partner row, from its own.
-        if (j < i && mirror != UINT64_MAX) continue;
-        double c = old_factor(i, k);
-        const double cm = mirror != UINT64_MAX ? old_factor(j, mirror) : -1.0;
-        c = c > 0 && cm > 0 ? std::sqrt(c * cm) : c > 0 ? c : cm > 0 ? cm : mean;
-        c = std::clamp(c, 0.5 * mean, 2.0 * mean);
-        bf.beta[k] = static_cast<float>(static_cast<double>(bf.beta[k]) * c);
-        if (mirror != UINT64_MAX)
-          bf.beta[mirror] = static_cast<float>(static_cast<double>(bf.beta[mirror]) * c);
-      }
-  }
-  // A window bond into the ring starts from the factor its partner's row carries.
+  // Moments. Every bond between two fitted nodes (the window and the ring) starts from its
+  // quadrature factor, as a correction from scratch does; only the bonds to nodes beyond keep
+  // theirs. The fixed point is not unique: refits started from the old corrected factors would
+  // move away from the whole model's one event after event (stiffer rows, a shorter stable
+  // step), though every node meets the bulk moments either way.
+  std::vector<char> in_ring(n, 0);
+  for (std::uint32_t j : ring) in_ring[j] = 1;
 #pragma omp parallel for schedule(dynamic, 64)
   for (std::size_t q = 0; q < ring.size(); ++q) {
     const std::uint32_t j = ring[q];
     for (std::uint64_t k = bf.begin(j); k < bf.end(j); ++k) {
       const std::uint32_t i = bf.neighbor[k];
-      if (!in[i]) continue;
+      if (!in[i] && !in_ring[i]) continue;
       const QuadratureEntry* e = find_entry(searched[q], i);
-      if (!e || !(e->beta > 0.0f)) continue;
-      const double c = std::abs(static_cast<double>(bf.beta[k])) / static_cast<double>(e->beta);
-      for (std::uint64_t h = bf.begin(i); h < bf.end(i); ++h)
-        if (bf.neighbor[h] == j) {
-          // Only the thread of row j writes the pair's entry in row i.
-          bf.beta[h] = static_cast<float>(static_cast<double>(bf.beta[h]) * c);
-          break;
-        }
+      if (!e) continue;
+      bf.beta[k] = BondFamilies::intact(bf.beta[k]) ? e->beta : -e->beta;
     }
   }
   std::vector<std::uint32_t> fit = window;

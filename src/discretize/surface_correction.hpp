@@ -59,19 +59,15 @@ void apply_surface_correction(const NodeSet& nodes, BondFamilies& bonds, Influen
 // bonds the rows around them hold, so that the cost follows the event's window, not the model:
 // - energy: the nodes next to the window get their g from a search of their rows, so every bond
 //   ends with the factor a correction of the whole model gives;
-// - moments: the window and the ring next to it fit their multipliers again on the bonds between
-//   them (a window bond into the ring starts from its partner's factor, so the factors stay
-//   symmetric; bonds to nodes beyond keep theirs, and so do those nodes' moments); the fixed
-//   point is not unique, so the factors differ from a correction from scratch while every fitted
-//   node meets the bulk moments.
-// `previous` (moments, optional): the corrected |beta| the fresh rows' bonds had before the
-// event, by directed pair (i << 32 | j), sorted: a pair that survived starts from its old factor
-// (the fixed point then needs few sweeps), a new one from the mean of those.
+// - moments: the window and the ring next to it fit their multipliers again from their
+//   quadrature factors on the bonds between them (bonds to nodes beyond keep theirs, and so do
+//   those nodes' moments); the fixed point is not unique, so the factors differ a little from a
+//   correction from scratch (row stiffness sums within 1%) while every fitted node meets the
+//   bulk moments.
 // Returns the rows outside `fresh` whose bonds changed.
 std::vector<std::uint32_t> correct_surface_window(
     const NodeSet& nodes, BondFamilies& bonds, const QuadratureSpec& quadrature,
     InfluenceShape shape, double uniaxial_modulus, SurfaceCorrection method, bool state_based,
-    const std::vector<double>& block_modulus, const std::vector<char>& fresh,
-    const std::vector<std::pair<std::uint64_t, float>>* previous = nullptr);
+    const std::vector<double>& block_modulus, const std::vector<char>& fresh);
 
 }  // namespace periadapt
