@@ -26,6 +26,9 @@ check blocks_no_nodes.yaml "blocks_no_nodes.yaml:6:13: key 'blocks[0].region': t
 check blocks_no_fracture.yaml "blocks_no_fracture.yaml:6:15: key 'blocks[0].material': damage is enabled: give this block's fracture_energy"
 check ghost_dual_horizon.yaml "ghost_dual_horizon.yaml:5:41: key 'adapt.ghost_correction': the correction acts on each row's own force"
 check ghost_static.yaml "ghost_static.yaml:11:21: key 'adapt.ghost_correction': the static solver assembles the bond stiffness directly"
+check gmsh_exit.yaml "gmsh_exit.yaml:6:16: key 'discretization.body.gmsh': "
+check gmsh_bowtie.yaml "gmsh_bowtie.yaml:6:16: key 'discretization.body.gmsh': "
+check stl_overlap.yaml "stl_overlap.yaml:6:19: key 'discretization.body.surface': "
 # run refuses a time step above the finest level's stable step; so must check.
 check adapt_time_step.yaml "adapt_time_step.yaml:4:21: key 'solver.time_step': 1.5e-07 s exceeds the stable step expected at refinement level 1"
 check list_key.yaml "list_key.yaml:2:1: a key must be a plain name"

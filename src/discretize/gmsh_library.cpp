@@ -2,8 +2,16 @@
 
 #include <dlfcn.h>
 #include <gmshc.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
+#include <algorithm>
+#include <cerrno>
+#include <csignal>
+#include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <mutex>
 #include <stdexcept>
 
@@ -133,6 +141,134 @@ void GmshSession::nodes(std::vector<std::size_t>& tags, std::vector<double>& coo
   take(c, nc, coords);
   if (p) api().free(p);
   check(ierr);
+}
+
+namespace {
+
+bool write_all(int fd, const void* data, std::size_t n) {
+  const char* p = static_cast<const char*>(data);
+  while (n > 0) {
+    const ssize_t w = ::write(fd, p, n);
+    if (w < 0 && errno == EINTR) continue;
+    if (w <= 0) return false;
+    p += w;
+    n -= static_cast<std::size_t>(w);
+  }
+  return true;
+}
+
+template <class T>
+bool write_vector(int fd, const std::vector<T>& v) {
+  const std::uint64_t n = v.size();
+  return write_all(fd, &n, sizeof n) && write_all(fd, v.data(), n * sizeof(T));
+}
+
+template <class T>
+bool read_vector(const std::string& buf, std::size_t& at, std::vector<T>& v) {
+  std::uint64_t n = 0;
+  if (buf.size() - at < sizeof n) return false;
+  std::memcpy(&n, buf.data() + at, sizeof n);
+  at += sizeof n;
+  if (n > (buf.size() - at) / sizeof(T)) return false;
+  v.resize(n);
+  std::memcpy(v.data(), buf.data() + at, n * sizeof(T));
+  at += n * sizeof(T);
+  return true;
+}
+
+// The child's work: its answer is a status byte, then the mesh or Gmsh's message.
+[[noreturn]] void mesh_and_report(int fd, const std::string& path, int dim) {
+  char status = 1;
+  std::string message;
+  GmshMesh mesh;
+  try {
+    const int type = dim == 2 ? 2 : 4;
+    GmshSession gmsh;
+    gmsh.open(path);
+    gmsh.elements_by_type(type, mesh.element_tags, mesh.element_nodes);
+    if (mesh.element_tags.empty()) {
+      gmsh.generate(dim);
+      gmsh.elements_by_type(type, mesh.element_tags, mesh.element_nodes);
+    }
+    gmsh.nodes(mesh.node_tags, mesh.coords);
+    status = 0;
+  } catch (const std::exception& e) {
+    message = e.what();
+  } catch (...) {
+    message = "Gmsh failed";
+  }
+  bool ok = write_all(fd, &status, 1);
+  if (status == 0)
+    ok = ok && write_vector(fd, mesh.element_tags) && write_vector(fd, mesh.element_nodes) &&
+         write_vector(fd, mesh.node_tags) && write_vector(fd, mesh.coords);
+  else
+    ok = ok && write_all(fd, message.data(), message.size());
+  ::close(fd);
+  std::_Exit(ok ? 0 : 1);  // no atexit handlers or destructors of the parent's state
+}
+
+// What the child may allocate: the memory the machine has available now (at least 1 GB), so
+// that a runaway mesh fails in the child instead of pushing the run out of memory. Not under
+// AddressSanitizer, whose shadow memory needs the address space.
+void limit_child_memory() {
+#if !defined(__SANITIZE_ADDRESS__)
+  const long pages = sysconf(_SC_AVPHYS_PAGES), page = sysconf(_SC_PAGESIZE);
+  if (pages > 0 && page > 0) {
+    const double avail = static_cast<double>(pages) * static_cast<double>(page);
+    const rlim_t cap = static_cast<rlim_t>(std::max(avail, 1e9));
+    const rlimit r{cap, cap};
+    setrlimit(RLIMIT_AS, &r);
+  }
+#endif
+}
+
+}  // namespace
+
+GmshMesh read_gmsh_mesh(const std::string& path, int dim) {
+  api();  // a library that cannot be loaded is said here, in the parent
+  int fds[2];
+  if (::pipe(fds) != 0) throw std::runtime_error(std::string("cannot start Gmsh: ") + std::strerror(errno));
+  const pid_t pid = ::fork();
+  if (pid < 0) {
+    ::close(fds[0]);
+    ::close(fds[1]);
+    throw std::runtime_error(std::string("cannot start Gmsh: ") + std::strerror(errno));
+  }
+  if (pid == 0) {
+    ::close(fds[0]);
+    limit_child_memory();
+    mesh_and_report(fds[1], path, dim);
+  }
+  ::close(fds[1]);
+  std::string buf;
+  char chunk[1 << 16];
+  for (;;) {
+    const ssize_t r = ::read(fds[0], chunk, sizeof chunk);
+    if (r < 0 && errno == EINTR) continue;
+    if (r <= 0) break;
+    buf.append(chunk, static_cast<std::size_t>(r));
+  }
+  ::close(fds[0]);
+  int wstatus = 0;
+  while (::waitpid(pid, &wstatus, 0) < 0 && errno == EINTR) {
+  }
+  if (!buf.empty() && buf[0] == 1) throw std::runtime_error(buf.substr(1));
+  GmshMesh mesh;
+  std::size_t at = 1;
+  const bool complete = !buf.empty() && buf[0] == 0 && read_vector(buf, at, mesh.element_tags) &&
+                        read_vector(buf, at, mesh.element_nodes) &&
+                        read_vector(buf, at, mesh.node_tags) && read_vector(buf, at, mesh.coords) &&
+                        at == buf.size() && WIFEXITED(wstatus) && WEXITSTATUS(wstatus) == 0;
+  if (complete) return mesh;
+  if (WIFSIGNALED(wstatus))
+    throw std::runtime_error(
+        "Gmsh stopped on signal " + std::to_string(WTERMSIG(wstatus)) +
+        " (" + strsignal(WTERMSIG(wstatus)) +
+        ") before giving a mesh: an invalid geometry, or a mesh too large for the memory "
+        "available (check Mesh.MeshSizeMax and the geometry's units)");
+  throw std::runtime_error("Gmsh ended (exit code " +
+                           std::to_string(WIFEXITED(wstatus) ? WEXITSTATUS(wstatus) : -1) +
+                           ") before giving a mesh; does the file call Exit?");
 }
 
 }  // namespace periadapt

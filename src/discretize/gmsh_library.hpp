@@ -26,4 +26,14 @@ class GmshSession {
   void nodes(std::vector<std::size_t>& tags, std::vector<double>& coords);
 };
 
+// The linear elements of a Gmsh file (triangles for dim 2, tetrahedra for dim 3; a geometry
+// without a mesh is meshed first) and every node, read by a child process: a script's `Exit`,
+// a crash inside Gmsh or a mesh that outgrows the memory left ends that process, not the run,
+// and comes back as a std::runtime_error saying so (as do Gmsh's own errors).
+struct GmshMesh {
+  std::vector<std::size_t> element_tags, element_nodes, node_tags;
+  std::vector<double> coords;
+};
+GmshMesh read_gmsh_mesh(const std::string& path, int dim);
+
 }  // namespace periadapt

@@ -10,6 +10,7 @@
 #include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
 #include <CGAL/Side_of_triangle_mesh.h>
 #include <CGAL/Surface_mesh.h>
@@ -62,6 +63,14 @@ class CgalSolid final : public SolidSurface {
   double volume_ = 0;
 };
 
+// Overlapping or crossing parts make the inside test count crossings of both: their common
+// volume would come out empty (an exclusive or, not a union).
+void refuse_self_intersection(const std::string& path, const Mesh& mesh) {
+  if (PMP::does_self_intersect(mesh))
+    throw SurfaceMeshError(path + ": the surface intersects itself (overlapping or crossing "
+                                  "parts); merge them into one closed surface");
+}
+
 // The closed surface of a triangle soup, oriented and checked.
 std::shared_ptr<const SolidSurface> solid_from_soup(const std::string& path,
                                                     std::vector<Point> points,
@@ -71,6 +80,7 @@ std::shared_ptr<const SolidSurface> solid_from_soup(const std::string& path,
   PMP::polygon_soup_to_polygon_mesh(points, faces, mesh);
   if (mesh.is_empty() || !CGAL::is_closed(mesh))
     throw SurfaceMeshError(path + ": the mesh's boundary is not closed");
+  refuse_self_intersection(path, mesh);
   if (!(std::abs(PMP::volume(mesh)) > 0)) throw SurfaceMeshError(path + ": the mesh has no volume");
   return std::make_shared<CgalSolid>(std::move(mesh));
 }
@@ -82,23 +92,20 @@ std::shared_ptr<const SolidSurface> load_gmsh_solid(const std::string& path, int
   if (!std::filesystem::is_regular_file(path, ec))
     throw SurfaceMeshError(path + ": cannot open the Gmsh file (not a regular file)");
   // Linear triangles (2D) or tetrahedra (3D); a geometry without a mesh is meshed first.
-  const int type = dim == 2 ? 2 : 4, corners = dim == 2 ? 3 : 4;
-  std::vector<std::size_t> element_tags, element_nodes, node_tags;
-  std::vector<double> coords;
+  const int corners = dim == 2 ? 3 : 4;
+  GmshMesh mesh;
   try {
-    GmshSession gmsh;
-    gmsh.open(path);
-    gmsh.elements_by_type(type, element_tags, element_nodes);
-    if (element_tags.empty()) {
-      gmsh.generate(dim);
-      gmsh.elements_by_type(type, element_tags, element_nodes);
-    }
-    gmsh.nodes(node_tags, coords);
+    mesh = read_gmsh_mesh(path, dim);
   } catch (const std::exception& e) {
     throw SurfaceMeshError(path + ": Gmsh could not read it: " + e.what());
-  } catch (...) {
-    throw SurfaceMeshError(path + ": Gmsh could not read it");
   }
+  const std::vector<std::size_t>& element_tags = mesh.element_tags;
+  const std::vector<std::size_t>& element_nodes = mesh.element_nodes;
+  const std::vector<std::size_t>& node_tags = mesh.node_tags;
+  const std::vector<double>& coords = mesh.coords;
+  if (element_nodes.size() != static_cast<std::size_t>(corners) * element_tags.size() ||
+      coords.size() != 3 * node_tags.size())
+    throw SurfaceMeshError(path + ": Gmsh gave an inconsistent mesh");
   if (element_tags.empty())
     throw SurfaceMeshError(path + (dim == 2 ? ": no triangles (2D models need a surface mesh)"
                                             : ": no tetrahedra (3D models need a volume mesh)"));
@@ -167,6 +174,7 @@ std::shared_ptr<const SolidSurface> load_solid_surface(const std::string& path) 
   if (!CGAL::is_closed(mesh))
     throw SurfaceMeshError(path + ": the surface is not closed (it has border edges); a body "
                                   "needs a watertight surface");
+  refuse_self_intersection(path, mesh);
   if (!(std::abs(PMP::volume(mesh)) > 0))
     throw SurfaceMeshError(path + ": the surface encloses no volume");
   return std::make_shared<CgalSolid>(std::move(mesh));
