@@ -2,7 +2,8 @@
 # Output failures stop the run with exit code 4 and a message naming the file; what was written
 # before stays valid. Cases: a full filesystem (a 3 MB tmpfs; skipped with a message where it
 # cannot be mounted), a folder where summary.json should go, an output folder that cannot be
-# created, and a second run into a folder another run holds.
+# created, a second run into a folder another run holds, and output names that are not regular
+# files (a FIFO and a device keep being what they are; a symbolic link is written through).
 set -u
 bin="$1"; examples="$2"; vtu_py="$3"; fail=0
 tmp=$(mktemp -d)
@@ -63,4 +64,21 @@ kill "$holder" 2>/dev/null; wait "$holder" 2>/dev/null
 [[ $rc -eq 4 && "$out" == *"another run is writing into $tmp/held"* ]] \
   && ok "held folder: $out" || bad "held folder: exit $rc: $out"
 [[ ! -e "$tmp/held/history.csv" ]] && ok "held folder: nothing written" || bad "held folder: files written"
+# 5. Names that are not regular files: a rename would replace them (as root, /dev/null itself).
+mkdir -p "$tmp/special"
+mkfifo "$tmp/special/fifo"
+echo "old" > "$tmp/special/target.csv"
+ln -s target.csv "$tmp/special/link.csv"
+out=$("$bin" check "$examples/crack_branching_2d.yaml" --write-nodes "$tmp/special/fifo" 2>&1); rc=$?
+[[ $rc -eq 4 && "$out" == *"is not a regular file"* && -p "$tmp/special/fifo" ]] \
+  && ok "FIFO kept: $out" || bad "FIFO: exit $rc: $out"
+if mknod "$tmp/special/null" c 1 3 2>/dev/null; then
+  out=$("$bin" check "$examples/crack_branching_2d.yaml" --write-nodes "$tmp/special/null" 2>&1); rc=$?
+  [[ $rc -eq 4 && -c "$tmp/special/null" ]] && ok "device kept: $out" || bad "device: exit $rc: $out"
+else
+  echo "skip device node (mknod not permitted)"
+fi
+"$bin" check "$examples/crack_branching_2d.yaml" --write-nodes "$tmp/special/link.csv" > /dev/null 2>&1; rc=$?
+[[ $rc -eq 0 && -L "$tmp/special/link.csv" && "$(head -1 "$tmp/special/target.csv")" == x,y,volume* ]] \
+  && ok "link written through" || bad "link: exit $rc, link kept: $([[ -L $tmp/special/link.csv ]] && echo yes || echo no)"
 exit $fail

@@ -25,12 +25,53 @@ void sync_file(const std::string& path) {
   if (!ok) throw OutputError("cannot write " + path + ": " + why);
 }
 
+// Where the content of `path` goes: a symbolic link is written through (its target gets the
+// file, the link stays); a name that is not a regular file (a device, a FIFO, a folder) is
+// refused, since a rename over it would replace it.
+std::string output_target(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  std::string target = path;
+  if (fs::is_symlink(fs::symlink_status(path, ec))) {
+    const fs::path resolved = fs::weakly_canonical(path, ec);
+    if (ec) throw OutputError("cannot write " + path + ": the link cannot be followed: " + ec.message());
+    target = resolved.string();
+  }
+  const fs::file_status st = fs::status(target, ec);
+  if (fs::exists(st) && !fs::is_regular_file(st))
+    throw OutputError("cannot write " + path + ": it exists and is not a regular file (" +
+                      (fs::is_directory(st) ? std::string("a folder") : std::string("a device, FIFO or socket")) +
+                      "); name a file");
+  return target;
+}
+
 }  // namespace
 
 void commit_file(const std::string& tmp, const std::string& path) {
   try {
+    const std::string target = output_target(path);
     sync_file(tmp);
     std::error_code ec;
+    if (target != path) {
+      // The link's target may lie on another file system: a copy beside it, then a rename.
+      const std::string near = target + ".tmp";
+      std::filesystem::copy_file(tmp, near, std::filesystem::copy_options::overwrite_existing, ec);
+      if (!ec) {
+        std::error_code ignore;
+        try {
+          sync_file(near);
+        } catch (...) {
+          std::filesystem::remove(near, ignore);
+          throw;
+        }
+        std::filesystem::rename(near, target, ec);
+        if (ec) std::filesystem::remove(near, ignore);
+      }
+      if (ec) throw OutputError("cannot write " + path + " (through its link to " + target + "): " + ec.message());
+      std::error_code ignore;
+      std::filesystem::remove(tmp, ignore);
+      return;
+    }
     std::filesystem::rename(tmp, path, ec);
     if (ec) throw OutputError("cannot write " + path + ": " + ec.message());
   } catch (...) {
@@ -42,6 +83,7 @@ void commit_file(const std::string& tmp, const std::string& path) {
 
 void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& fill,
                            bool binary) {
+  output_target(path);  // refused before anything is written
   const std::string tmp = path + ".tmp";
   {
     std::ofstream out(tmp, binary ? std::ios::binary : std::ios::out);
