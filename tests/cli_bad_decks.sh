@@ -99,4 +99,15 @@ status=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["status
   && echo "ok   adapt_unstable_after_event.yaml with allow_unstable_time_step: rc $rc, $status" ||
   { echo "FAIL adapt_unstable_after_event.yaml with allow_unstable_time_step: rc $rc, $status: $out"; fail=1; }
 rm -rf "$tmp"
+# Empty --restart or --out values (an unset shell variable) are refused, not read as "none":
+# an empty --restart started the run over and replaced its checkpoint.
+for opt in --restart --out; do
+  out=$("$bin" run "$dir/unknown_key.yaml" $opt "" 2>&1); rc=$?
+  [[ $rc -eq 2 && "$out" == *"key '$opt': is empty"* ]] && echo "ok   empty $opt: $out" ||
+    { echo "FAIL empty $opt: $rc $out"; fail=1; }
+done
+# A study's or a sweep's folder that cannot be made: exit 4 naming it, not a C++ exception.
+out=$("$bin" study weak-directions --out "$dir/unknown_key.yaml" 2>&1); rc=$?
+[[ $rc -eq 4 && "$out" == *"cannot create the output folder"* ]] && echo "ok   study --out a file: $out" ||
+  { echo "FAIL study --out a file: $rc $out"; fail=1; }
 exit $fail

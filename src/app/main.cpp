@@ -330,8 +330,20 @@ int main(int argc, char** argv) {
       run_dir = out.empty() ? load_deck(deck).output.directory : out;
       return run_sweep(deck, sweep_sets, {}, run_dir, quiet);
     }
+    if (run->get_option("--restart")->count() > 0 && restart_from.empty())
+      throw DeckError(deck, 0, 0, "--restart",
+                      "is empty: name a checkpoint.bin or the output folder holding it (an "
+                      "empty value would start the run over and replace its checkpoint)");
+    for (CLI::App* sub : {run, sweep, study})
+      if (sub->parsed() && sub->get_option("--out")->count() > 0 && out.empty())
+        throw DeckError(deck.empty() ? std::string("command line") : deck, 0, 0, "--out",
+                        "is empty: name a folder (for the current one: '.')");
     if (study->parsed()) {
-      if (!out.empty()) std::filesystem::create_directories(out);
+      if (!out.empty()) {
+        std::error_code ec;
+        std::filesystem::create_directories(out, ec);
+        if (ec) throw OutputError("cannot create the output folder " + out + ": " + ec.message());
+      }
       study_opt.out_dir = out;
       return find_study(study_name)->run(study_opt);
     }
@@ -431,6 +443,11 @@ int main(int argc, char** argv) {
       }
     }
     // Rank 0 alone writes files: the other ranks would wait for it in the next exchange.
+    if (mpi::distributed()) mpi::abort(4);
+    return 4;
+  } catch (const std::filesystem::filesystem_error& e) {
+    // A folder or file the run needed could not be made (a study's or a sweep's runs).
+    fmt::print(stderr, "error: cannot write {}: {}\n", e.path1().string(), e.code().message());
     if (mpi::distributed()) mpi::abort(4);
     return 4;
   } catch (const std::exception& e) {
