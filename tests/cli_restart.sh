@@ -134,6 +134,16 @@ refuse "a truncated checkpoint" "truncated" --restart "$tmp/cut.bin"
 echo "not a checkpoint" > "$tmp/junk.bin"
 refuse "a file that is no checkpoint" "not a PeriAdapt checkpoint" --restart "$tmp/junk.bin"
 refuse "a folder without one" "no checkpoint here" --restart "$tmp"
+# The header's step and time are checked with the data: a changed step is a corrupt file.
+python3 - "$ck" "$tmp/step.bin" <<'PY'
+import struct, sys
+b = bytearray(open(sys.argv[1], "rb").read())
+hsize = struct.unpack_from("<Q", b, 21 + 4)[0]
+end = 21 + 4 + 8 + hsize  # the header's fields end with the step and the time (8 bytes each)
+b[end - 16] ^= 0x01
+open(sys.argv[2], "wb").write(bytes(b))
+PY
+refuse "a checkpoint whose step was changed" "checksum mismatch" --restart "$tmp/step.bin"
 refuse "an end before the checkpoint" "not past its" --restart "$ck" --set solver.end_time=1.0e-8
 # A longer run and other output settings are allowed: the deck's physics is what must match.
 "$bin" run "$adaptive" --out "$tmp/longer" --quiet --restart "$ck" --set solver.end_time=60.0e-6 \

@@ -57,6 +57,7 @@ void info_fields(Archive&& a, Info& info) {
 struct Header {
   CheckpointInfo info;
   std::uint64_t payload_size = 0, sum = 0;
+  Fnv1a head_sum;  // the checksum covers the header's fields too (deck, step, time)
 };
 Header read_header(std::istream& in, const std::string& path, const Deck& dk) {
   in.seekg(0, std::ios::end);
@@ -86,6 +87,7 @@ Header read_header(std::istream& in, const std::string& path, const Deck& dk) {
     refuse(path, "header length out of range (corrupt)");
   const std::string head = bytes(hsize, "header");
   Header h;
+  h.head_sum.add(head.data(), head.size());
   try {
     ArchiveReader r(head, path);
     info_fields([&](auto& v) { r.get(v); }, h.info);
@@ -112,8 +114,8 @@ Header read_header(std::istream& in, const std::string& path, const Deck& dk) {
 // A payload read from its file in order, its checksum taken on the way.
 class FileStream final : public ArchiveStream {
  public:
-  FileStream(std::istream& in, std::uint64_t size, std::string path)
-      : in_(in), left_(size), path_(std::move(path)) {}
+  FileStream(std::istream& in, std::uint64_t size, std::string path, Fnv1a start)
+      : in_(in), left_(size), path_(std::move(path)), sum_(start) {}
   void read(void* to, std::size_t n) override {
     if (n > left_)
       throw ArchiveError(path_ + ": ends inside its data (truncated or corrupt)");
@@ -147,14 +149,15 @@ std::string deck_fingerprint(const Deck& dk) { return fmt::format("{:016x}", fnv
 
 std::uint64_t write_checkpoint_parts(const std::string& path, const CheckpointInfo& info,
                                      const PayloadProducer& produce) {
+  ArchiveWriter head;
+  info_fields([&](const auto& v) { head.put(v); }, info);
   Fnv1a sum;
+  sum.add(head.bytes().data(), head.bytes().size());
   std::uint64_t size = 0;
   produce([&](const char* p, std::size_t n) {
     sum.add(p, n);
     size += n;
   });
-  ArchiveWriter head;
-  info_fields([&](const auto& v) { head.put(v); }, info);
   std::uint64_t written = 0;
   write_file_atomically(path, [&](std::ostream& o) {
     o.write(kMagic, kMagicSize);
@@ -193,7 +196,9 @@ Checkpoint read_checkpoint(const std::string& path_or_dir, const Deck& dk) {
   c.payload.resize(h.payload_size);
   if (!in.read(c.payload.data(), static_cast<std::streamsize>(h.payload_size)))
     refuse(c.path, "cannot read the file");
-  if (fnv1a(c.payload) != h.sum) refuse(c.path, "checksum mismatch: the file is corrupt");
+  Fnv1a sum = h.head_sum;
+  sum.add(c.payload.data(), c.payload.size());
+  if (sum.h != h.sum) refuse(c.path, "checksum mismatch: the file is corrupt");
   return c;
 }
 
@@ -206,7 +211,7 @@ void read_checkpoint_piece(const std::string& path, const Deck& dk, std::uint64_
   std::ifstream in(path, std::ios::binary);
   const Header h = read_header(in, path, dk);
   if (h.sum != sum) refuse(path, "this piece belongs to another checkpoint than the one beside it");
-  FileStream s(in, h.payload_size, path);
+  FileStream s(in, h.payload_size, path, h.head_sum);
   parse(s);
   if (s.left() != 0) refuse(path, "data past the piece's rows (corrupt)");
   if (s.sum() != sum) refuse(path, "checksum mismatch: the file is corrupt");

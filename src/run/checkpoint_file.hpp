@@ -12,7 +12,7 @@
 
 namespace periadapt {
 
-inline constexpr std::uint32_t kCheckpointFormat = 4;
+inline constexpr std::uint32_t kCheckpointFormat = 5;
 inline constexpr const char* kCheckpointName = "checkpoint.bin";
 
 struct CheckpointInfo {
