@@ -315,6 +315,8 @@ TEST(DeckErrors, EveryLoaderCheckRefusesItsCaseNamingTheKey) {
       {{"boundary_conditions=[{name: left-edge, region: {box: {min: [0, 0], max: [0.001, 0.04]}}, "
         "velocity: [0, 0]}, {name: left.edge, region: {box: {min: [0.099, 0], max: [0.1, 0.04]}}, "
         "velocity: [0, 0]}]"}, "boundary_conditions[1].name", "same history.csv columns (bc_left_edge"},
+      {{"output.regions=[{name: a/b, region: {all: true}}, {name: a_b, region: {all: true}}]"},
+       "output.regions[1].name", "same history.csv columns (region_a_b"},
       {{"output.load_displacement={name: nobody}"}, "output.load_displacement.name", "top left"},
       {{"output.load_displacement={name: left, component: z}"}, "output.load_displacement.component", "allowed"},
   };

@@ -9,6 +9,7 @@
 
 #include "core/expression.hpp"
 #include "input/deck_sections.hpp"
+#include "io/csv_column.hpp"
 #include "input/yaml_section.hpp"
 
 namespace periadapt::deck_sections {
@@ -27,7 +28,14 @@ void parse_output(Section& top, Deck& dk) {
       nr.name = r.text("name");
       if (nr.name.empty()) r.fail("name", "must not be empty");
       for (const NamedRegion& other : out.regions)
-        if (other.name == nr.name) r.fail("name", "'" + nr.name + "' names two output regions");
+        if (csv_column_stem("", other.name) == csv_column_stem("", nr.name))
+          r.fail("name", other.name == nr.name
+                             ? "'" + nr.name + "' names two output regions"
+                             : "'" + nr.name + "' and the output region '" + other.name +
+                                   "' give the same history.csv columns (region_" +
+                                   csv_column_stem("", nr.name) +
+                                   "_...: characters other than letters and digits become '_'); "
+                                   "rename one");
       nr.region = parse_region(r.section("region"), dk.dim);
       r.finish();
       out.regions.push_back(std::move(nr));

@@ -3,9 +3,9 @@
 #include <fmt/format.h>
 
 #include <array>
-#include <cctype>
 
 #include "core/exact_sum.hpp"
+#include "io/csv_column.hpp"
 #include "parallel/owned_sums.hpp"
 
 namespace periadapt {
@@ -61,11 +61,7 @@ std::vector<RegionSums> sums(const std::vector<NamedRegion>& regions, const Node
   return out;
 }
 
-std::string column_base(const std::string& name) {
-  std::string s = "region_";
-  for (char c : name) s += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
-  return s;
-}
+std::string column_base(const std::string& name) { return csv_column_stem("region_", name); }
 
 }  // namespace
 
