@@ -21,4 +21,12 @@ cmp <(cut -d, -f1-15 "$tmp/alone/history.csv") <(cut -d, -f1-15 "$tmp/sw/run_000
 "$bin" sweep "$deck" --out "$tmp/bad" --quiet --set material.fracture_energy=100,-5 > "$tmp/log" 2>&1; rc=$?
 [[ $rc -eq 2 && ! -e $tmp/bad/run_0000 ]] && grep -q "material.fracture_energy" "$tmp/log" &&
   ok "a bad value: exit 2 before any run" || bad "a bad value: exit $rc: $(cat "$tmp/log")"
+# The same key swept twice (its rows were labelled with the first --set's values) and a swept
+# output folder (each run has its own) are refused before any run.
+"$bin" sweep "$deck" --out "$tmp/twice" --quiet --set solver.steps=10,20 --set solver.steps=30 > "$tmp/log" 2>&1; rc=$?
+[[ $rc -eq 2 && ! -e $tmp/twice/run_0000 ]] && grep -q "swept twice" "$tmp/log" &&
+  ok "a key swept twice: exit 2" || bad "a key swept twice: exit $rc: $(cat "$tmp/log")"
+"$bin" sweep "$deck" --out "$tmp/dirs" --quiet --set output.directory=a,b > "$tmp/log" 2>&1; rc=$?
+[[ $rc -eq 2 && ! -e $tmp/dirs/run_0000 ]] && grep -q "cannot be swept" "$tmp/log" &&
+  ok "output.directory swept: exit 2" || bad "output.directory swept: exit $rc: $(cat "$tmp/log")"
 exit $fail

@@ -49,7 +49,18 @@ std::string csv_field(const nlohmann::json& j) {
 int run_sweep(const std::string& deck, const std::vector<std::string>& sets,
               const std::vector<std::string>& fixed, const std::string& out_dir, bool quiet) {
   std::vector<std::pair<std::string, std::vector<std::string>>> axes;
-  for (const std::string& s : sets) axes.push_back(split_sweep_values(deck, s));
+  for (const std::string& s : sets) {
+    axes.push_back(split_sweep_values(deck, s));
+    const std::string& key = axes.back().first;
+    for (std::size_t k = 0; k + 1 < axes.size(); ++k)
+      if (axes[k].first == key)
+        throw DeckError(deck, 0, 0, key,
+                        "swept twice (--set given twice for it); give all its values in one --set");
+    if (key == "output.directory")
+      throw DeckError(deck, 0, 0, key,
+                      "a sweep writes each run into its own run_NNNN folder under --out; it "
+                      "cannot be swept");
+  }
   std::size_t total = 1;
   for (const auto& a : axes) {
     total *= a.second.size();
