@@ -110,4 +110,11 @@ done
 out=$("$bin" study weak-directions --out "$dir/unknown_key.yaml" 2>&1); rc=$?
 [[ $rc -eq 4 && "$out" == *"cannot create the output folder"* ]] && echo "ok   study --out a file: $out" ||
   { echo "FAIL study --out a file: $rc $out"; fail=1; }
+# A runaway impactor stops the run as a divergence naming it, with no NaN in history.csv's energies.
+tmp=$(mktemp -d)
+out=$("$bin" run "$dir/impactor_runaway.yaml" --out "$tmp" --quiet --threads 1 2>&1); rc=$?
+nan=$(cut -d, -f3-6 "$tmp/history.csv" 2>/dev/null | grep -ci nan)
+[[ $rc -eq 3 && "$out" == *"impactors[0]: non-finite"* && $nan -eq 0 ]] && echo "ok   impactor_runaway.yaml: $out" ||
+  { echo "FAIL impactor_runaway.yaml: rc $rc, $nan NaN rows: $out"; fail=1; }
+rm -rf "$tmp"
 exit $fail

@@ -901,6 +901,20 @@ bool VelocityVerlet::step() {
     impactor_energy -= im.kinetic_energy();
   }
   const double p = external_power();
+  // An impactor's state is solver state too: one that runs away (an absurd speed) would put NaN
+  // into the external work and the energy balance without any node diverging.
+  for (std::size_t k = 0; k < m_.impactors.size(); ++k) {
+    const Impactor& im = m_.impactors[k];
+    bool finite = std::isfinite(im.kinetic_energy());
+    for (int d = 0; d < 3; ++d) finite = finite && std::isfinite(im.center[d]) && std::isfinite(im.force[d]);
+    if (!finite) {
+      divergence_ = {0, step_, time_,
+                     "impactors[" + std::to_string(k) +
+                         "]: non-finite position, velocity or force (speed too large for the "
+                         "time step?)"};
+      return false;
+    }
+  }
   external_work_ += 0.5 * (p + last_power_) * dt + impactor_energy;
   last_power_ = p;
   return true;
