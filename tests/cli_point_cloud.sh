@@ -48,6 +48,9 @@ bad "a word for a number, with its line" 'x,y,volume\n0,0,1e-7\n0.001,abc,1e-7\n
 bad "a negative volume" 'x,y,volume\n0,0,-1\n' "bad.csv:2: the volume must be > 0"
 bad "a short row" 'x,y,volume\n0,0\n' "bad.csv:2: 2 values where the header has 3"
 bad "no points" 'x,y,volume\n' "no points after the header"
+bad "a repeated row" 'x,y,volume\n0,0,1e-7\n0.001,0,1e-7\n0,0,1e-7\n' "bad.csv:4: the point lies 0 m from the point on line 2"
+bad "a point 1e-11 m from another" 'x,y,volume\n0,0,1e-7\n0.00100000001,0,1e-7\n0.001,0,1e-7\n' "bad.csv:4: the point lies 1e-11 m from the point on line 3"
+bad "a volume of 1e300" 'x,y,volume\n0,0,1e-7\n0.001,0,1e300\n' "bad.csv:3: volume 1e+300 is more than 1000 cells"
 sed 's|points: nodes.csv|points: missing.csv|' "$tmp/points.yaml" > "$tmp/missing.yaml"
 "$bin" check "$tmp/missing.yaml" > "$tmp/missing.log" 2>&1
 [[ $? -eq 2 ]] && grep -q "missing.csv: cannot open" "$tmp/missing.log" && echo "ok   refused: a missing file" ||

@@ -45,7 +45,10 @@ void parse_discretization_and_cracks(Section& top, Deck& dk) {
       std::filesystem::path file = body.text("points");
       if (file.is_relative()) file = deck_folder() / file;
       try {
-        g.points = read_point_cloud(file.string(), dk.dim);
+        std::vector<long> lines;
+        g.points = read_point_cloud(file.string(), dk.dim, nullptr, &lines);
+        check_point_cloud_body(file.string(), g.points, lines, dk.dim, g.spacing,
+                               cell_volume(dk.dim, g.spacing, g.thickness));
       } catch (const PointCloudError& e) {
         body.fail("points", e.what());
       }

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <unordered_map>
 
 namespace periadapt {
 
@@ -31,8 +32,10 @@ std::vector<std::string> split(const std::string& line) {
 }  // namespace
 
 std::vector<std::array<double, 4>> read_point_cloud(const std::string& path, int dim,
-                                                    std::vector<long>* blocks) {
+                                                    std::vector<long>* blocks,
+                                                    std::vector<long>* lines) {
   if (blocks) blocks->clear();
+  if (lines) lines->clear();
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
     throw PointCloudError(path + ": cannot open the point file (not a regular file)");
@@ -96,9 +99,55 @@ std::vector<std::array<double, 4>> read_point_cloud(const std::string& path, int
     if (!(p[3] > 0)) fail(number, "the volume must be > 0");
     if (points.size() >= kMaxPoints) fail(number, "more than 2^31 points");
     points.push_back(p);
+    if (lines) lines->push_back(number);
   }
   if (points.empty()) fail(number, "no points after the header");
   return points;
+}
+
+void check_point_cloud_body(const std::string& path,
+                            const std::vector<std::array<double, 4>>& points,
+                            const std::vector<long>& lines, int dim, double spacing,
+                            double cell_volume) {
+  auto line_of = [&](std::size_t k) { return k < lines.size() ? lines[k] : 0L; };
+  for (std::size_t k = 0; k < points.size(); ++k)
+    if (points[k][3] > 1e3 * cell_volume)
+      throw PointCloudError(fmt::format(
+          "{}:{}: volume {:g} is more than 1000 cells of the grid spacing ({:g} each); check its "
+          "units", path, line_of(k), points[k][3], cell_volume));
+  // Near pairs through a hash of cells one spacing wide: each point meets those of its own cell
+  // and the neighbouring ones.
+  const double tol = 1e-3 * spacing;
+  std::unordered_map<std::uint64_t, std::vector<std::size_t>> cells;
+  auto key = [&](const std::array<long, 3>& c) {
+    return (static_cast<std::uint64_t>(c[0] & 0x1fffff) << 42) |
+           (static_cast<std::uint64_t>(c[1] & 0x1fffff) << 21) |
+           static_cast<std::uint64_t>(c[2] & 0x1fffff);
+  };
+  auto cell_of = [&](const std::array<double, 4>& p) {
+    std::array<long, 3> c{0, 0, 0};
+    for (int d = 0; d < dim; ++d) c[d] = static_cast<long>(std::floor(p[d] / spacing));
+    return c;
+  };
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const std::array<long, 3> c = cell_of(points[k]);
+    for (long dx = -1; dx <= 1; ++dx)
+      for (long dy = dim > 1 ? -1 : 0; dy <= (dim > 1 ? 1 : 0); ++dy)
+        for (long dz = dim > 2 ? -1 : 0; dz <= (dim > 2 ? 1 : 0); ++dz) {
+          const auto it = cells.find(key({c[0] + dx, c[1] + dy, c[2] + dz}));
+          if (it == cells.end()) continue;
+          for (std::size_t j : it->second) {
+            double r2 = 0;
+            for (int d = 0; d < dim; ++d) r2 += (points[k][d] - points[j][d]) * (points[k][d] - points[j][d]);
+            if (r2 < tol * tol)
+              throw PointCloudError(fmt::format(
+                  "{}:{}: the point lies {:.3g} m from the point on line {} (less than 1e-3 of the "
+                  "spacing {:g} m): a repeated row?",
+                  path, line_of(k), std::sqrt(r2), line_of(j), spacing));
+          }
+        }
+    cells[key(c)].push_back(k);
+  }
 }
 
 }  // namespace periadapt
