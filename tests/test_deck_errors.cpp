@@ -404,6 +404,8 @@ TEST(DeckErrors, TheGridRefusesEmptyRegionsAndNonFiniteMotionsNamingTheLine) {
        "discretization.holes[0]", 3, "removes no node"},
       {"center: [0.015, 0.005], radius: 0.002", "center: [0.015, 0.005], radius: 0.0002",
        "discretization.holes[0]", 3, "between the grid points"},
+      {"solver: {steps: 2}", "initial_conditions: {velocity: [\"sqrt(x - 0.01)\", 0]}\nsolver: {steps: 2}",
+       "initial_conditions.velocity[0]", 17, "must be finite on every node"},
       {"max: [0.02, 0.01]}}, holes", "max: [1e308, 0.01]}}, holes", "discretization.spacing", 0,
        "discretization.body on line 3: its bounding box is 1e+308 x 0.01 m"},
   };

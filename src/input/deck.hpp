@@ -113,6 +113,7 @@ struct Deck {
   std::vector<LoadSpec> loads;
   std::vector<MotionSpec> motions;
   std::array<std::optional<std::string>, 3> initial_displacement, initial_velocity;
+  std::array<DeckPlace, 3> initial_displacement_at, initial_velocity_at;
   // damage
   bool damage = true;
   std::vector<Shape> no_fail;

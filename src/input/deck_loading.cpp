@@ -68,8 +68,11 @@ void parse_loading_and_damage(Section& top, Deck& dk) {
   }
   // --- initial conditions
   if (auto ic = top.optional_section("initial_conditions")) {
-    if (ic->has("displacement")) dk.initial_displacement = parse_components(*ic, "displacement", dk.dim);
-    if (ic->has("velocity")) dk.initial_velocity = parse_components(*ic, "velocity", dk.dim);
+    if (ic->has("displacement"))
+      dk.initial_displacement =
+          parse_components(*ic, "displacement", dk.dim, &dk.initial_displacement_at);
+    if (ic->has("velocity"))
+      dk.initial_velocity = parse_components(*ic, "velocity", dk.dim, &dk.initial_velocity_at);
     ic->finish();
   }
   // --- damage

@@ -273,23 +273,22 @@ Model build_model(const Deck& dk, const FamilyBuild& families) {
     m.motions.push_back(std::move(pm));
   }
   for (int d = 0; d < dk.dim; ++d) {
-    if (dk.initial_displacement[d]) {
-      Expression e(*dk.initial_displacement[d]);
+    const auto set = [&](const std::optional<std::string>& text, const DeckPlace& at,
+                         std::vector<double>& field) {
+      if (!text) return;
+      Expression e(*text);
       for (std::size_t i = 0; i < ns.size(); ++i) {
-        ns.u[d][i] = e(ns.x[0][i], ns.x[1][i], ns.x[2][i], 0.0);
+        field[i] = e(ns.x[0][i], ns.x[1][i], ns.x[2][i], 0.0);
+        if (!std::isfinite(field[i]))
+          throw DeckError(dk.file, at,
+                          fmt::format("'{}' is {} at the node ({:.6g}, {:.6g}, {:.6g}); an initial "
+                                      "value must be finite on every node",
+                                      *text, field[i], ns.x[0][i], ns.x[1][i], ns.x[2][i]));
       }
-    }
-    if (dk.initial_velocity[d]) {
-      Expression e(*dk.initial_velocity[d]);
-      for (std::size_t i = 0; i < ns.size(); ++i)
-        ns.v[d][i] = e(ns.x[0][i], ns.x[1][i], ns.x[2][i], 0.0);
-    }
+    };
+    set(dk.initial_displacement[d], dk.initial_displacement_at[d], ns.u[d]);
+    set(dk.initial_velocity[d], dk.initial_velocity_at[d], ns.v[d]);
   }
-  for (int d = 0; d < dk.dim; ++d)
-    for (std::size_t i = 0; i < ns.size(); ++i)
-      if (!std::isfinite(ns.u[d][i]) || !std::isfinite(ns.v[d][i]))
-        throw DeckError(dk.file, 0, 0, "initial_conditions",
-                        "an initial field is not finite at node " + std::to_string(i));
   ns.sync_all_current();
   {
     for (std::size_t k = 0; k < dk.adapt.initial.size(); ++k)
