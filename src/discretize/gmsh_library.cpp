@@ -171,7 +171,7 @@ bool read_vector(const std::string& buf, std::size_t& at, std::vector<T>& v) {
   at += sizeof n;
   if (n > (buf.size() - at) / sizeof(T)) return false;
   v.resize(n);
-  std::memcpy(v.data(), buf.data() + at, n * sizeof(T));
+  if (n > 0) std::memcpy(v.data(), buf.data() + at, n * sizeof(T));
   at += n * sizeof(T);
   return true;
 }
