@@ -14,7 +14,7 @@ fi
 mkdir -p "$out/corpus"
 flags=(-std=c++20 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -Isrc)
 sources=(fuzz/deck_fuzzer.cpp fuzz/surface_mesh_stub.cpp src/input/deck*.cpp
-  src/input/yaml_section.cpp src/input/point_cloud.cpp
+  src/input/yaml_section.cpp src/input/point_cloud.cpp src/discretize/grid.cpp
   src/core/expression.cpp src/setup/memory_estimate.cpp src/material/micromodulus.cpp
   src/material/bond_laws.cpp src/material/formulation.cpp $(grep -l bond_law_kernel.hpp src/material/*.cpp))
 # One object per source, compiled side by side (one clang++ call compiles them one after another).
