@@ -424,7 +424,8 @@ int main(int argc, char** argv) {
                  us(r.crack->branching_s), r.crack->mean_speed, r.crack->max_speed);
     }
     if (!r.history_path.empty())
-      fmt::print("outputs: {} , {} , summary.json\n", r.pvd_path, r.history_path);
+      fmt::print("outputs: {}{} , summary.json\n", r.pvd_path.empty() ? "" : r.pvd_path + " , ",
+                 r.history_path);
     return 0;
   } catch (const DeckError& e) {
     fmt::print(stderr, "error: {}\n", e.what());

@@ -73,8 +73,9 @@ void SnapshotObserver::restore(ArchiveReader& r, RunView& view) {
 void SnapshotObserver::finish(RunView& view, RunResult& res) {
   nlohmann::json& j = res.summary;
   if (!view.write_files) return;
-  if (vtu_) res.pvd_path = vtu_->pvd_path();
-  j["outputs"]["pvd"] = res.pvd_path;
+  // No collection is named where no snapshot was written (output.vtu: false).
+  if (vtu_ && !vtu_->entries().empty()) res.pvd_path = vtu_->pvd_path();
+  if (!res.pvd_path.empty()) j["outputs"]["pvd"] = res.pvd_path;
 }
 
 }  // namespace periadapt
