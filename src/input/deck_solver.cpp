@@ -205,7 +205,9 @@ void parse_adapt(Section& top, Deck& dk) {
                  : sc == "m"   ? HorizonScaling::M
                                : HorizonScaling::DeltaM;
     if (ad.scaling == HorizonScaling::DeltaM) {
-      ad.m_per_level = a->numbers("m_per_level", static_cast<std::size_t>(ad.max_level + 1), 64);
+      // One m per level the run can reach: a longer list names levels max_level never allows.
+      const auto levels = static_cast<std::size_t>(ad.max_level + 1);
+      ad.m_per_level = a->numbers("m_per_level", levels, levels);
       for (double v : ad.m_per_level)
         if (!(v >= 1.0)) a->fail("m_per_level", "every m must be >= 1");
       if (std::abs(ad.m_per_level[0] - dk.horizon_factor) > 1e-9 * dk.horizon_factor)
