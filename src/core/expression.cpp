@@ -7,6 +7,23 @@
 
 namespace periadapt {
 
+namespace {
+// muParser reads `x = 1` (and `+=` ...) as assigning the variable: a deck that meant `==` would
+// get the assigned value instead of a condition.
+bool has_assignment(const std::string& s) {
+  for (std::size_t k = 0; k < s.size(); ++k) {
+    if (s[k] != '=') continue;
+    const char prev = k > 0 ? s[k - 1] : ' ', next = k + 1 < s.size() ? s[k + 1] : ' ';
+    if (next == '=') {
+      ++k;  // `==`
+      continue;
+    }
+    if (prev != '<' && prev != '>' && prev != '!') return true;
+  }
+  return false;
+}
+}  // namespace
+
 struct Expression::Impl {
   mu::Parser parser;
   mutable double x = 0, y = 0, z = 0, t = 0;
@@ -21,6 +38,9 @@ struct Expression::Impl {
 };
 
 Expression::Expression(const std::string& text) : text_(text) {
+  if (has_assignment(text))
+    throw std::invalid_argument("cannot parse expression '" + text +
+                                "': '=' assigns a variable; compare with '==', '<=' or '>='");
   try {
     impl_ = std::make_unique<Impl>(text);
     const auto& used = impl_->parser.GetUsedVar();
