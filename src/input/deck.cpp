@@ -24,7 +24,10 @@ Deck parse_deck_sections(const std::string& text, const std::string& name,
 // deck file (the value came from the command line).
 YAML::Node unmarked(const YAML::Node& n) {
   if (n.IsScalar()) return YAML::Node(n.Scalar());
-  YAML::Node out;
+  // An empty list or mapping keeps its kind (`--set cracks={}` is a mapping, not "no cracks").
+  YAML::Node out(n.IsSequence() ? YAML::NodeType::Sequence
+                 : n.IsMap()    ? YAML::NodeType::Map
+                                : YAML::NodeType::Null);
   if (n.IsSequence())
     for (const YAML::Node& e : n) out.push_back(unmarked(e));
   else if (n.IsMap())
