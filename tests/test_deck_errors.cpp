@@ -123,6 +123,14 @@ TEST(DeckErrors, BadExpression) {
   DeckError e = expect_error(std::string(kGood) + "initial_conditions: {velocity: ['exp(x', '0']}\n");
   EXPECT_EQ(e.key(), "initial_conditions.velocity");
   EXPECT_TRUE(contains(e, "cannot parse expression")) << e.what();
+  // An assignment where a comparison was meant; the comparisons themselves stay allowed.
+  for (const char* v : {"x = 0.01 ? 1 : 0", "t += 1", "y*=2"}) {
+    DeckError a = expect_error(std::string(kGood) + "initial_conditions: {velocity: ['" + v + "', '0']}\n");
+    EXPECT_EQ(a.key(), "initial_conditions.velocity");
+    EXPECT_TRUE(contains(a, "'=' assigns")) << a.what();
+  }
+  EXPECT_NO_THROW(parse_deck(std::string(kGood) +
+                                 "initial_conditions: {velocity: ['x == 0 || x <= 1 && x >= 0 && x != 2', '0']}\n", "good.yaml"));
 }
 
 TEST(DeckErrors, PoissonRatioContradictingTheBondBasedModel) {
@@ -186,6 +194,9 @@ TEST(DeckErrors, CommandLineOverridesAreCheckedLikeTheDecksOwnKeys) {
   EXPECT_TRUE(contains(expect_error_with(kGood, {"material.colour=red"}), "unknown key"));
   EXPECT_TRUE(contains(expect_error_with(kGood, {"cracks.3.segment=[]"}), "not an index"));
   EXPECT_TRUE(contains(expect_error_with(kGood, {"spacing"}), "expected key.path=value"));
+  // An empty mapping where a list belongs is refused as in a deck file, not read as no cracks.
+  EXPECT_TRUE(contains(expect_error_with(kGood, {"cracks={}"}), "expected a list, got a mapping"));
+  EXPECT_EQ(parse_deck(kGood, "a.yaml", {"cracks=[]"}).cracks.size(), 0u);
 }
 
 // Every check of the loader, one row each: a valid deck broken by --set overrides must be refused
@@ -283,6 +294,7 @@ TEST(DeckErrors, EveryLoaderCheckRefusesItsCaseNamingTheKey) {
       {{"adapt={initial_refinement: [{region: {all: true}, level: 1}], refine_crack_tips: true}"},
        "adapt.refine_crack_tips", "trigger"},
       {{"adapt={scaling: delta_m, m_per_level: [4, 3]}"}, "adapt.m_per_level", "level 0"},
+      {{"adapt={scaling: delta_m, max_level: 1, m_per_level: [3, 4, 5]}"}, "adapt.m_per_level", ""},
       {{"adapt={method: A, refine_loads: true, energy_trigger: 0.5}"}, "adapt.refine_loads", "method a"},
       {{"adapt={method: A, coarsen: true, energy_trigger: 0.5}"}, "adapt.coarsen", "method"},
       {{"adapt={coarsen: true, damage_trigger: true}"}, "adapt.coarsen", "energy trigger"},
