@@ -166,7 +166,7 @@ TEST(Static, DynamicRelaxationConvergesToTheLinearSolution) {
   solve_linear_static(a, model_constraints(a));
   RelaxationOptions ro;
   ro.tolerance = 1e-7;
-  ASSERT_TRUE(run_dynamic_relaxation(b, ro, [](const RelaxationStepReport&) {}));
+  ASSERT_EQ(run_dynamic_relaxation(b, ro, [](const RelaxationStepReport&) {}), RelaxationStatus::Converged);
   double worst = 0, scale = 0;
   for (std::size_t i = 0; i < a.nodes.size(); ++i)
     for (int d = 0; d < 2; ++d) {
@@ -211,13 +211,21 @@ TEST(Static, DynamicRelaxationBreaksBondsUnderARisingLoad) {
   ro.tolerance = 1e-6;
   std::size_t broken = 0;
   int steps = 0;
-  ASSERT_TRUE(run_dynamic_relaxation(m, ro, [&](const RelaxationStepReport& r) {
+  ASSERT_EQ(run_dynamic_relaxation(m, ro, [&](const RelaxationStepReport& r) {
     EXPECT_TRUE(r.converged);
     broken += r.newly_broken;
     ++steps;
-  }));
+  }), RelaxationStatus::Converged);
   EXPECT_EQ(steps, 10);
   EXPECT_GT(broken, 0u);
+  // A stop asked for in the third load step ends the run there: two steps reported, the third
+  // (unconverged) not.
+  Model again = build_model(dk);
+  int reported = 0;
+  ro.stop_requested = [&] { return reported == 2; };
+  EXPECT_EQ(run_dynamic_relaxation(again, ro, [&](const RelaxationStepReport&) { ++reported; }),
+            RelaxationStatus::Interrupted);
+  EXPECT_EQ(reported, 2);
 }
 
 // Bobaru's bar (section 5.2 geometry: length 20, loads at +-1) against the continuum solution by

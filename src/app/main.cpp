@@ -368,7 +368,15 @@ int main(int argc, char** argv) {
       throw DeckError(deck, 0, 0, "--restart",
                       "restarts are for explicit runs; static and relaxation runs start over");
     if (dk.solver == Deck::SolverType::Relaxation) {
+      install_interrupt_handlers();
       const RunResult r = run_relaxation(dk, ro);
+      if (r.interrupted) {
+        fmt::print(stderr,
+                   "interrupted by signal {} after load step {} of {}: history, snapshots and "
+                   "summary.json (status interrupted) up to that step are in {}\n",
+                   r.interrupted, r.steps_done, dk.load_steps, run_dir);
+        return 128 + r.interrupted;
+      }
       fmt::print("done: dynamic relaxation, {} load steps, {} iterations, {} bonds broken\n",
                  dk.load_steps, r.summary["solver"]["iterations"].get<long>(),
                  r.summary["broken_bonds"].get<std::size_t>());

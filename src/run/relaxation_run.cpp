@@ -17,6 +17,7 @@
 #include "input/deck_error.hpp"
 #include "io/vtu_writer.hpp"
 #include "parallel/mpi_env.hpp"
+#include "run/interrupt.hpp"
 #include "setup/build_model.hpp"
 #include "solver/dynamic_relaxation.hpp"
 
@@ -46,6 +47,8 @@ RunResult run_relaxation(const Deck& dk, const RunOptions& opt) {
   ro.load_steps = dk.load_steps;
   ro.tolerance = dk.relax_tolerance;
   ro.max_iterations = dk.relax_max_iterations;
+  // The ranks agree on a signal (each relaxes the whole model; the force passes are shared).
+  ro.stop_requested = [] { return mpi::max(interrupt_signal()) != 0; };
   std::size_t broken = 0;
   long iterations = 0;
   std::vector<double> W;
@@ -55,7 +58,9 @@ RunResult run_relaxation(const Deck& dk, const RunOptions& opt) {
   auto reaction = [&](const PrescribedMotion& p) {
     return equilibrium_reaction(m, p, ns.f, last.load_factor);
   };
-  const bool ok = run_dynamic_relaxation(m, ro, [&](const RelaxationStepReport& r) {
+  int converged_steps = 0;
+  const RelaxationStatus status = run_dynamic_relaxation(m, ro, [&](const RelaxationStepReport& r) {
+    if (r.converged) converged_steps = r.load_step;
     last = r;
     broken += r.newly_broken;
     iterations += r.iterations;
@@ -75,9 +80,15 @@ RunResult run_relaxation(const Deck& dk, const RunOptions& opt) {
                  r.load_step, dk.load_steps, r.load_factor, r.iterations, r.residual,
                  r.newly_broken);
   });
+  const bool ok = status == RelaxationStatus::Converged;
+  if (status == RelaxationStatus::Interrupted) {
+    res.interrupted = static_cast<int>(mpi::max(interrupt_signal()));
+    res.steps_done = converged_steps;
+  }
   nlohmann::json& j = res.summary;
   j["deck"] = dk.file;
-  j["status"] = ok ? "completed" : "not_converged";
+  j["status"] = ok ? "completed" : res.interrupted ? "interrupted" : "not_converged";
+  j["load_steps_converged"] = converged_steps;
   j["solver"] = {{"type", "relaxation"},
                  {"load_steps", dk.load_steps},
                  {"tolerance", dk.relax_tolerance},
@@ -101,7 +112,7 @@ RunResult run_relaxation(const Deck& dk, const RunOptions& opt) {
     hist.finish();
     write_file_atomically(dir + "/summary.json", [&](std::ostream& o) { o << j.dump(2) << "\n"; });
   }
-  if (!ok)
+  if (!ok && !res.interrupted)
     throw DeckError(dk.file, 0, 0, "solver.max_iterations",
                     fmt::format("dynamic relaxation did not converge at load step {} (relative "
                                 "residual {:.3e} after {} iterations); raise max_iterations, use "

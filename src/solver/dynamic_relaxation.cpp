@@ -19,7 +19,7 @@ struct Fixed {
 
 }  // namespace
 
-bool run_dynamic_relaxation(Model& m, const RelaxationOptions& opt,
+RelaxationStatus run_dynamic_relaxation(Model& m, const RelaxationOptions& opt,
                             const std::function<void(const RelaxationStepReport&)>& after_step) {
   NodeSet& ns = m.nodes;
   const int D = ns.dim;
@@ -66,6 +66,8 @@ bool run_dynamic_relaxation(Model& m, const RelaxationOptions& opt,
       double res = INFINITY, fnorm_ref = 0;
       long it = 0;
       for (; it < opt.max_iterations; ++it) {
+        if (opt.stop_requested && it % 16 == 0 && opt.stop_requested())
+          return RelaxationStatus::Interrupted;
         internal_forces(m, false);
         // Residual and the Rayleigh-quotient damping from the change of force.
         double num = 0, den = 0, fn = 0;
@@ -110,7 +112,7 @@ bool run_dynamic_relaxation(Model& m, const RelaxationOptions& opt,
       rep.converged = res <= opt.tolerance;
       if (!rep.converged) {
         after_step(rep);
-        return false;
+        return RelaxationStatus::NotConverged;
       }
       if (!m.damage_enabled) break;
       const std::size_t broke = internal_forces(m, true);
@@ -119,7 +121,7 @@ bool run_dynamic_relaxation(Model& m, const RelaxationOptions& opt,
     }
     after_step(rep);
   }
-  return true;
+  return RelaxationStatus::Converged;
 }
 
 }  // namespace periadapt

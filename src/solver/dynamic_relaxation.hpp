@@ -16,7 +16,12 @@ struct RelaxationOptions {
   int load_steps = 1;
   double tolerance = 1e-6;       // ||F|| <= tolerance ||b|| (force densities, free components)
   long max_iterations = 200000;  // per relaxation
+  // Asked every few iterations (a signal): the run stops in the relaxation it is in, and the
+  // state of the last converged load step is the last one reported.
+  std::function<bool()> stop_requested;
 };
+
+enum class RelaxationStatus { Converged, NotConverged, Interrupted };
 
 struct RelaxationStepReport {
   int load_step = 0;
@@ -27,9 +32,9 @@ struct RelaxationStepReport {
   bool converged = false;
 };
 
-// Runs all load steps; `after_step` is called after each (for outputs). Returns false when a
-// relaxation did not converge within max_iterations (the model keeps its last state).
-bool run_dynamic_relaxation(Model& m, const RelaxationOptions& opt,
+// Runs all load steps; `after_step` is called after each (for outputs), and after a relaxation
+// that did not converge within max_iterations (NotConverged; the model keeps its last state).
+RelaxationStatus run_dynamic_relaxation(Model& m, const RelaxationOptions& opt,
                             const std::function<void(const RelaxationStepReport&)>& after_step);
 
 }  // namespace periadapt
