@@ -3,12 +3,19 @@
 // fresh bond pass over the same state, and what it adds to the summary arrives in the result.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <memory>
 
 #include "adapt/adaptor.hpp"
 #include "analysis/energy.hpp"
 #include "input/deck_builder.hpp"
+#include "io/atomic_output.hpp"
+#include "io/temporary_files.hpp"
 #include "run/simulation.hpp"
 #include "solver/velocity_verlet.hpp"
 
@@ -109,4 +116,34 @@ TEST(Observers, ACallersObserverSeesEveryStepEventAndTheStepsOwnEnergyDensity) {
   EXPECT_EQ(r.steps, steps);
   EXPECT_FALSE(r.divergence.has_value());
   EXPECT_TRUE(r.history_path.empty());  // nothing written
+}
+
+// A process ended by a second signal while writing FILE (FILE.tmp open) leaves FILE as it was and
+// no FILE.tmp: the handler unlinks the temporaries the atomic writes have marked.
+TEST(AtomicOutput, TheTemporaryOfAWriteInProgressIsRemovedBySecondSignalCleanup) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("periadapt_tmpfiles_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string path = (dir / "checkpoint.bin").string();
+  write_file_atomically(path, [](std::ostream& o) { o << "good"; });
+  bool existed = false, gone = false;
+  EXPECT_THROW(write_file_atomically(path,
+                                     [&](std::ostream& o) {
+                                       o << "half";
+                                       o.flush();
+                                       existed = fs::exists(path + ".tmp");
+                                       remove_temporary_files_now();  // what the handler does
+                                       gone = !fs::exists(path + ".tmp");
+                                     }),
+               OutputError);
+  EXPECT_TRUE(existed);
+  EXPECT_TRUE(gone);
+  std::ifstream in(path);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text, "good");
+  // A finished write is no longer marked: a later file of that name is left alone.
+  { std::ofstream(path + ".tmp") << "someone else's"; }
+  remove_temporary_files_now();
+  EXPECT_TRUE(fs::exists(path + ".tmp"));
+  fs::remove_all(dir);
 }

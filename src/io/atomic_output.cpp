@@ -10,6 +10,8 @@
 #include <fstream>
 #include <iterator>
 
+#include "io/temporary_files.hpp"
+
 namespace periadapt {
 
 namespace {
@@ -55,6 +57,7 @@ void commit_file(const std::string& tmp, const std::string& path) {
     if (target != path) {
       // The link's target may lie on another file system: a copy beside it, then a rename.
       const std::string near = target + ".tmp";
+      const TemporaryFileGuard near_guard(near);
       std::filesystem::copy_file(tmp, near, std::filesystem::copy_options::overwrite_existing, ec);
       if (!ec) {
         std::error_code ignore;
@@ -85,6 +88,7 @@ void write_file_atomically(const std::string& path, const std::function<void(std
                            bool binary) {
   output_target(path);  // refused before anything is written
   const std::string tmp = path + ".tmp";
+  const TemporaryFileGuard guard(tmp);
   {
     std::ofstream out(tmp, binary ? std::ios::binary : std::ios::out);
     if (!out) throw OutputError("cannot write " + path + ": " + reason());

@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "io/atomic_output.hpp"
+#include "io/temporary_files.hpp"
 
 #include <cstdint>
 #include <cstdio>
@@ -24,6 +25,7 @@ void write_png_file(cairo_surface_t* surf, const std::string& path) {
   const unsigned char* data = cairo_image_surface_get_data(surf);
   // Through a temporary name (io/atomic_output.hpp): a failed write leaves the old picture.
   const std::string tmp = path + ".tmp";
+  const TemporaryFileGuard guard(tmp);
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> fp(std::fopen(tmp.c_str(), "wb"), &std::fclose);
   if (!fp) throw OutputError("cannot write " + path + ": " + std::strerror(errno));
   auto fail = [&](const std::string& why) {

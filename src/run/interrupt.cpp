@@ -2,6 +2,8 @@
 
 #include <csignal>
 
+#include "io/temporary_files.hpp"
+
 namespace periadapt {
 
 namespace {
@@ -10,6 +12,8 @@ volatile std::sig_atomic_t g_signal = 0;
 
 extern "C" void on_signal(int sig) {
   if (g_signal != 0) {
+    // Ends at once: a write in progress leaves its final name as it was, and no temporary.
+    remove_temporary_files_now();
     std::signal(sig, SIG_DFL);
     std::raise(sig);
     return;
