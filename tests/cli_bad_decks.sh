@@ -37,6 +37,8 @@ check end_time_huge.yaml "end_time_huge.yaml: key 'solver.end_time': gives inf s
 check time_step_tiny.yaml "time_step_tiny.yaml: key 'solver.end_time': gives 1e+294 steps"
 check end_time_zero_steps.yaml "end_time_zero_steps.yaml: key 'solver.end_time': gives 0 steps"
 check vtu_snapshots_huge.yaml "vtu_snapshots_huge.yaml:5:25: key 'output.vtu_snapshots': must be in 0 ... 100000"
+# A crack along a node row would be bridged by those nodes' bonds to both faces.
+check precrack_on_nodes.yaml "precrack_on_nodes.yaml:7:5: key 'cracks[0]': the pre-crack passes through 8 nodes (the first at (0.0005, 0.0055, 0) m)"
 check rebalance_threshold.yaml "rebalance_threshold.yaml:6:24: key 'solver.rebalance_threshold': must be in [0.01, 10]"
 # Impossible memory: refused from the deck alone, within 2 s and under a 3 GB address-space cap,
 # with the estimate in the message.

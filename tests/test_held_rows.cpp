@@ -35,11 +35,12 @@ DeckBuilder plate_deck(double W, double H) {
   return b;
 }
 
-// A pre-cracked 12 x 9 plate, so that rows differ in length and in broken bonds.
+// A pre-cracked 12 x 9 plate (the crack between node rows), so that rows differ in length and in
+// broken bonds.
 Model plate() {
   return build_model(plate_deck(12, 9)
                          .append("cracks", DeckBuilder().set("segment", std::vector<std::vector<double>>{
-                                                                            {0, 4.5}, {6, 4.5}}))
+                                                                            {0, 4.0}, {6, 4.0}}))
                          .build("held rows plate"));
 }
 

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "input/deck_builder.hpp"
+#include "input/deck_error.hpp"
 #include "setup/build_model.hpp"
 
 using namespace periadapt;
@@ -64,5 +65,41 @@ TEST(PreCrack, InitialDamageCountsCutBonds) {
     const double y = m.nodes.x[1][i];
     if (y == 1.5 || y == 2.5) EXPECT_GT(m.nodes.damage(i), 0.2);
     else EXPECT_EQ(m.nodes.damage(i), 0.0);
+  }
+}
+
+// A node on the crack would keep its bonds to both faces (the strict crossing rule) and bridge
+// it: such a deck is refused, for the nodes of the grid and for the children refinement by
+// method B can put there (sub-cell centres of every level up to max_level).
+TEST(PreCrack, ACrackThroughNodesOfAnyReachableLevelIsRefused) {
+  auto refused = [](const std::vector<std::vector<double>>& crack, int max_level) {
+    DeckBuilder d = grid(2, 4.0).append("cracks", DeckBuilder().set("segment", crack));
+    if (max_level > 0) d.set("adapt.max_level", max_level).set("adapt.stretch_trigger", 0.5);
+    try {
+      build_model(d.build("4 x 4 grid"));
+    } catch (const DeckError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  // Through the node row y = 1.5: its four nodes.
+  EXPECT_NE(refused({{0, 1.5}, {4, 1.5}}, 0).find("passes through 4 nodes"), std::string::npos);
+  // Ending on the node (0.5, 1.5) only touches it: strictly inside the crack is what bridges
+  // (this one is refused for cutting no bond instead).
+  EXPECT_EQ(refused({{-1, 1.5}, {0.5, 1.5}}, 0).find("passes through"), std::string::npos);
+  // y = 1.25: no node, but the level-1 children of the row y = 1.5 (at 1.25 and 1.75), 8 of them.
+  EXPECT_EQ(refused({{0, 1.25}, {4, 1.25}}, 0), "");
+  EXPECT_NE(refused({{0, 1.25}, {4, 1.25}}, 1).find("8 nodes of refinement level 1"), std::string::npos);
+  // y = 1.125 is a level-2 row, never one of level 1; a cell edge (y = 2) is no level's.
+  EXPECT_EQ(refused({{0, 1.125}, {4, 1.125}}, 1), "");
+  EXPECT_NE(refused({{0, 1.125}, {4, 1.125}}, 2).find("of refinement level 2"), std::string::npos);
+  EXPECT_EQ(refused({{0, 2}, {4, 2}}, 4), "");
+  // 3D: the plane z = 0.5 holds the bottom layer of a 2 x 2 x 2 block.
+  const std::vector<std::vector<double>> quad = {{0, 0, 0.5}, {2, 0, 0.5}, {2, 2, 0.5}, {0, 2, 0.5}};
+  try {
+    build_model(grid(3, 2.0).append("cracks", DeckBuilder().set("quad", quad)).build("2 x 2 x 2 grid"));
+    ADD_FAILURE() << "a quad through 4 nodes was accepted";
+  } catch (const DeckError& e) {
+    EXPECT_NE(std::string(e.what()).find("passes through 4 nodes"), std::string::npos) << e.what();
   }
 }

@@ -51,4 +51,76 @@ std::size_t apply_precracks(const NodeSet& nodes, BondFamilies& bonds,
   return total;
 }
 
+namespace {
+
+bool on_crack(const PreCrack& c, const Vec3& p, double tol) {
+  if (!c.planar3d) {
+    const Vec3 &a = c.points[0], &b = c.points[1];
+    const double bx = b[0] - a[0], by = b[1] - a[1], len = std::hypot(bx, by);
+    if (!(len > 0)) return false;
+    const double t = ((p[0] - a[0]) * bx + (p[1] - a[1]) * by) / len;  // along, in metres
+    return std::abs(orient2d(a, b, p)) / len <= tol && t > tol && t < len - tol;
+  }
+  const auto& v = c.points;
+  const Vec3 n = cross(sub(v[1], v[0]), sub(v[3], v[0]));
+  const double nn = norm(n);
+  if (!(nn > 0) || std::abs(dot(n, sub(p, v[0]))) / nn > tol) return false;
+  double sign = 0;  // strictly inside every edge
+  for (int e = 0; e < 4; ++e) {
+    const Vec3 &a = v[e], &b = v[(e + 1) % 4];
+    const double s = dot(n, cross(sub(b, a), sub(p, a))) / (nn * norm(sub(b, a)));
+    if (std::abs(s) <= tol) return false;
+    if (sign == 0) sign = s;
+    else if ((s > 0) != (sign > 0)) return false;
+  }
+  return true;
+}
+
+// Distance from p to the crack's line or plane (an upper bound is not needed: a cell farther
+// than its half-diagonal holds no point on the crack).
+double distance_to_crack_carrier(const PreCrack& c, const Vec3& p) {
+  if (!c.planar3d) {
+    const Vec3 &a = c.points[0], &b = c.points[1];
+    const double len = std::hypot(b[0] - a[0], b[1] - a[1]);
+    return len > 0 ? std::abs(orient2d(a, b, p)) / len : INFINITY;
+  }
+  const Vec3 n = cross(sub(c.points[1], c.points[0]), sub(c.points[3], c.points[0]));
+  const double nn = norm(n);
+  return nn > 0 ? std::abs(dot(n, sub(p, c.points[0]))) / nn : INFINITY;
+}
+
+}  // namespace
+
+std::size_t points_on_precrack(const NodeSet& nodes, const PreCrack& c, int levels, int* level,
+                               Vec3* first) {
+  const int D = nodes.dim;
+  for (int l = 0; l <= levels; ++l) {
+    std::size_t count = 0;
+    const int per = 1 << l;  // sub-cells per cell edge
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+      if (!(nodes.flags[i] & kActive)) continue;
+      const Vec3 p{nodes.x[0][i], nodes.x[1][i], nodes.x[2][i]};
+      const double h = nodes.spacing[i];
+      if (l > 0 && distance_to_crack_carrier(c, p) > 0.5 * h * std::sqrt(double(D)) * (1 + 1e-9)) continue;
+      const double tol = 1e-9 * h / per;
+      int k[3] = {0, 0, 0};
+      for (;;) {
+        Vec3 q = p;
+        for (int d = 0; d < D; ++d) q[d] += l == 0 ? 0.0 : h * (-0.5 + (2.0 * k[d] + 1.0) / (2.0 * per));
+        if (on_crack(c, q, tol)) {
+          if (count++ == 0 && first) *first = q;
+        }
+        int d = 0;
+        while (d < D && ++k[d] == per) k[d++] = 0;
+        if (d == D) break;
+      }
+    }
+    if (count > 0) {
+      if (level) *level = l;
+      return count;
+    }
+  }
+  return 0;
+}
+
 }  // namespace periadapt

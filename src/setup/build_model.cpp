@@ -181,6 +181,29 @@ Model build_model(const Deck& dk, const FamilyBuild& families) {
   apply_surface_correction(ns, m.bonds, dk.shape, p_wave_modulus(dk.dim, dk.plane, dk.E, mat.nu),
                            m.surface_correction, m.formulation.state_based(),
                            block_uniaxial_moduli(m), m.partition.rows_held ? &held : nullptr);
+  // A node on a crack is on neither side: it keeps its bonds to both faces and ties them
+  // together, a crack that is not one (and which side a node within round-off of the line
+  // falls on would be round-off). Refinement by method B puts children at sub-cell centres:
+  // those of every level the run can reach count too.
+  const int child_levels =
+      dk.adapt.enabled && dk.adapt.method == NodeGeneration::B ? dk.adapt.max_level : 0;
+  for (std::size_t c = 0; c < dk.cracks.size(); ++c) {
+    int level = 0;
+    Vec3 p{0, 0, 0};
+    const std::size_t on = points_on_precrack(ns, dk.cracks[c], child_levels, &level, &p);
+    if (mpi::max(static_cast<long>(on)) == 0) continue;
+    const std::string what = level == 0 ? fmt::format("{} node{}", on, on == 1 ? "" : "s")
+                                        : fmt::format("{} node{} of refinement level {}", on,
+                                                      on == 1 ? "" : "s", level);
+    const std::string where =
+        on ? fmt::format(" (the first at ({:.6g}, {:.6g}, {:.6g}) m)", p[0], p[1], p[2]) : "";
+    throw DeckError(dk.file, c < dk.crack_at.size() ? dk.crack_at[c] : DeckPlace{"cracks[" + std::to_string(c) + "]"},
+                    fmt::format("the pre-crack passes through {}{}: a node on it keeps its bonds "
+                                "to both faces and bridges the crack. Move the crack off the "
+                                "nodes, e.g. onto a cell edge ({:.6g} m from a node row{})",
+                                what, where, 0.5 * dk.grid.spacing,
+                                level > 0 ? ", which no level's nodes lie on" : ""));
+  }
   std::vector<std::size_t> cut_by;
   m.precrack_bonds = apply_precracks(ns, m.bonds, dk.cracks, nullptr, &cut_by);
   // A crack that cuts no bond (inside a hole, beside the body, in other units) does nothing.
