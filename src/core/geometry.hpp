@@ -190,9 +190,10 @@ inline double orient2d_snapped(const Vec3& a, const Vec3& b, const Vec3& c) {
 // construction, their ends often exactly on a child's bond, where the computed sign is round-off:
 // mirror images (coordinates differing in their last bits) decided differently, and a
 // mirror-symmetric plate cracked on one side only. A facet is a short mark across a broken bond,
-// not the crack's extent, so a touch is no crossing. A deck's pre-cracks keep the exact
-// predicate: the seed studies were validated with its decisions at their tips (snapped, the
-// crack-branching deck's tip cuts two bonds more or fewer).
+// not the crack's extent, so a touch is no crossing. A deck's pre-crack keeps its sides exact
+// (a node within round-off of its line is refused at set-up) and snaps only the touch of its
+// ends: a bond through a crack end was decided by round-off, differently for p->q and q->p (one
+// direction of the pair cut, the other not: unequal forces at the tip) and for mirror images.
 template <bool Snapped = false>
 inline bool bond_crosses_segment(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b) {
   auto orient = [](const Vec3& u, const Vec3& v, const Vec3& w) {
@@ -200,7 +201,7 @@ inline bool bond_crosses_segment(const Vec3& p, const Vec3& q, const Vec3& a, co
   };
   const double o1 = orient(a, b, p), o2 = orient(a, b, q);
   if (!((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0))) return false;
-  const double o3 = orient(p, q, a), o4 = orient(p, q, b);
+  const double o3 = orient2d_snapped(p, q, a), o4 = orient2d_snapped(p, q, b);
   return Snapped ? o3 * o4 < 0 : o3 * o4 <= 0;
 }
 
