@@ -294,7 +294,9 @@ TEST(Adapt, EnergyDensitiesSurviveARowRefreshExactly) {
     energy_density(m, step_fresh);
     const double before = relative_gap(*vv.energy_density_now(), step_fresh);
     EXPECT_LT(before, 1e-11);
-    EXPECT_LE(relative_gap(*kept, fresh), 2 * before);
+    // Twice the step pass's gap, or a few units of round-off where that gap is itself one (the
+    // sanitizer build's -O1 rounds to 6e-17 before the event and 1.25e-16 after it).
+    EXPECT_LE(relative_gap(*kept, fresh), std::max(2 * before, 1e-15));
   }
 }
 
