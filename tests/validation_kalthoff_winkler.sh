@@ -27,6 +27,13 @@ for l in 1 2 U; do
 done
 val() { grep -m1 "\"$2\"" "$out/$1/summary.json" | sed -E 's/.*: *//; s/,$//'; }
 tipy() { grep -m1 -A2 '"final_tip_m"' "$out/$1/summary.json" | tail -1 | tr -d ' ,'; }
+# summary.json names the material's Rayleigh speed (2,834 m/s for E = 190 GPa, rho = 8000, nu = 1/4
+# in plane strain: 0.9194 c_s) and whether a tracked tip outran it.
+for l in 1 2; do
+  cr=$(val L$l rayleigh_speed_m_s); above=$(val L$l max_speed_above_rayleigh)
+  awk -v c="$cr" 'BEGIN { exit !(c > 2830 && c < 2838) }' || { echo "FAIL: level $l rayleigh_speed_m_s = $cr"; exit 1; }
+  [[ "$above" == false ]] || { echo "FAIL: level $l max_speed_above_rayleigh = $above"; exit 1; }
+done
 awk -v a1="$(val L1 path_angle_deg)" -v v1="$(val L1 max_speed_m_s)" -v y1="$(tipy L1)" \
     -v a2="$(val L2 path_angle_deg)" -v v2="$(val L2 max_speed_m_s)" -v au="$(val LU path_angle_deg)" 'BEGIN {
   bad = 0

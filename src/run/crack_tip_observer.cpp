@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "io/atomic_output.hpp"
+#include "analysis/rayleigh_speed.hpp"
 #include "io/line_plot.hpp"
 #include "solver/velocity_verlet.hpp"
 
@@ -92,6 +93,14 @@ void CrackTipObserver::finish(RunView& view, RunResult& res) {
   }
   c["mean_speed_m_s"] = tracker_.mean_speed();
   c["max_speed_m_s"] = tracker_.max_speed();
+  // A tip cannot outrun the Rayleigh wave: a faster tracked tip jumped (a crack nucleated ahead
+  // of it, or another branch became the tip), and its speed is the tracker's, not a crack's.
+  const MaterialLaw& mat = view.model.material;
+  const double cR = rayleigh_speed(ns.dim, mat.plane, mat.E, mat.nu, mat.rho);
+  if (cR > 0) {
+    c["rayleigh_speed_m_s"] = cR;
+    c["max_speed_above_rayleigh"] = tracker_.max_speed() > cR;
+  }
   c["speed_window_s"] = tip_.window;
   nlohmann::json path = nlohmann::json::array();
   for (const TipSample& s : tracker_.path())
