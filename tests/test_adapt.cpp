@@ -6,6 +6,7 @@
 #include <cmath>
 #include <functional>
 #include <map>
+#include <numeric>
 
 #include "adapt/adaptor.hpp"
 #include "adapt/refine.hpp"
@@ -1110,6 +1111,7 @@ TEST(Adapt, AParentWhoseChildHasADynamicallyBrokenBondIsNotCoarsened) {
 }
 
 #include "adapt/triggers.hpp"
+#include "core/binary_archive.hpp"
 
 // W_max of the energy trigger is taken over the nodes that can refine: a clamped or driven edge
 // (which never refines) with a large boundary-layer energy must not switch the trigger off.
@@ -1299,6 +1301,89 @@ TEST(Adapt, FineDamageRefinesUnloadedCoarseNodesOnlyWithoutTheStretchTrigger) {
       EXPECT_EQ(ns.size(), n0) << "an unloaded coarse node was refined";
     else
       EXPECT_GT(ns.size(), n0) << "the coarse nodes that see the damage were not refined";
+  }
+}
+
+// Once a bond has broken, the stretch trigger refines within stretch_reach horizons of a cracked
+// node only. A plate held at a uniform strain of 0.6 of the children's critical stretch (above the
+// trigger's 0.5, below the coarse bonds' own s0 at 1/sqrt(2)) and one node kicked hard enough to
+// break its bonds: with the reach the zone stays around the kick, without it the whole plate is
+// refined.
+TEST(Adapt, OnceCrackedTheStretchTriggerRefinesNearCracksOnly) {
+  for (const double reach : {2.0, 0.0}) {
+    SCOPED_TRACE(reach > 0 ? "stretch_reach 2" : "stretch_reach 0");
+    const Deck dk = test::glass_plate({0.0, 0.0}, {0.06, 0.03})
+                        .set("adapt", level_one()
+                                          .set("stretch_trigger", 0.5)
+                                          .set("damage_trigger", true)
+                                          .set("stretch_reach", reach))
+                        .set("solver.end_time", 1e-7)
+                        .build("strained plate");
+    Model m = build_model(dk);
+    NodeSet& ns = m.nodes;
+    const double s_child = ns.critical_stretch[0] * std::sqrt(2.0);
+    const double eps[3][3] = {{0.6 * s_child, 0, 0}, {0, 0.6 * s_child, 0}, {0, 0, 0}};
+    test::apply_homogeneous_strain(ns, eps);
+    const Vec3 kick{0.0305, 0.0155, 0};
+    std::uint32_t kicked = 0;
+    for (std::size_t i = 0; i < ns.size(); ++i)
+      if (std::hypot(ns.x[0][i] - kick[0], ns.x[1][i] - kick[1]) < 1e-6) kicked = static_cast<std::uint32_t>(i);
+    ASSERT_LT(std::hypot(ns.x[0][kicked] - kick[0], ns.x[1][kicked] - kick[1]), 1e-6);
+    ns.v[1][kicked] = 500.0;  // 25 um in one step: its bonds break
+    VelocityVerlet vv(m, 5.0e-8);
+    vv.initialize();
+    Adaptor ad(m, vv, dk.adapt);
+    ASSERT_TRUE(ad.step());
+    std::size_t far = 0, far_refined = 0, cracked = 0;
+    for (std::size_t i = 0; i < ns.size(); ++i) {
+      if (!(ns.flags[i] & kActive)) continue;
+      cracked += ns.broken_weight[i] > 0;
+      // The kicked node's neighbours are cracked (their bond to it broke); beyond them the reach,
+      // the visibility ball and a parent's cell with its children's offset.
+      if (std::hypot(ns.x[0][i] - kick[0], ns.x[1][i] - kick[1]) > (1.0 + 2.0 + 1.0) * 0.003 + 0.0015) {
+        ++far;
+        far_refined += ns.level[i] > 0;
+      }
+    }
+    EXPECT_GT(cracked, 10u);
+    EXPECT_GT(far, 1000u);
+    if (reach > 0)
+      EXPECT_EQ(far_refined, 0u);
+    else
+      EXPECT_GT(far_refined, far / 2);
+    if (reach == 0) continue;
+    // A restart keeps the rule: the body at rest at the same strain again (no bond breaks in the
+    // next step), stepped by an adaptor restored from this one's state and by a fresh one.
+    ArchiveWriter w;
+    ad.save_state(w);
+    const std::string state = w.take();
+    for (std::size_t i = 0; i < ns.size(); ++i)
+      for (int d = 0; d < 3; ++d) ns.v[d][i] = 0.0;
+    test::apply_homogeneous_strain(ns, eps);
+    for (const bool restored : {true, false}) {
+      SCOPED_TRACE(restored ? "restored" : "fresh");
+      Model mk = m;
+      VelocityVerlet vk(mk, 5.0e-8);
+      vk.initialize();
+      Adaptor ak(mk, vk, dk.adapt);
+      if (restored) {
+        ArchiveReader r(state, "adaptor state");
+        ak.restore_state(r);
+      }
+      const double broken_before = std::accumulate(mk.nodes.broken_weight.begin(), mk.nodes.broken_weight.end(), 0.0);
+      ASSERT_TRUE(ak.step());
+      const double broken_after = std::accumulate(mk.nodes.broken_weight.begin(), mk.nodes.broken_weight.end(), 0.0);
+      std::size_t refined_now = 0;
+      for (std::size_t i = 0; i < mk.nodes.size(); ++i)
+        refined_now += (mk.nodes.flags[i] & kActive) && mk.nodes.level[i] > 0;
+      std::size_t refined_before = 0;
+      for (std::size_t i = 0; i < ns.size(); ++i) refined_before += (ns.flags[i] & kActive) && ns.level[i] > 0;
+      EXPECT_EQ(broken_after, broken_before) << "a bond broke in the second step";
+      if (restored)
+        EXPECT_EQ(refined_now, refined_before);
+      else
+        EXPECT_GT(refined_now, refined_before + 1000);
+    }
   }
 }
 

@@ -35,6 +35,9 @@ enum class NodeGeneration {
 // largest stretch scales as delta^(-1/2) like s0 (the K field sampled over a horizon), so it is
 // 1/sqrt(2) of the critical stress intensity for each level of refinement (delta-scaling).
 inline constexpr double kDefaultStretchTrigger = 0.5;
+// The automatic profile's stretch_reach (coarse horizons): where a K field at its critical value
+// passes kDefaultStretchTrigger of the children's s0, (1 / 0.5)^2 fine = 2 coarse horizons ahead.
+inline constexpr double kDefaultStretchReach = 2.0;
 
 struct AdaptSpec {
   bool enabled = false;
@@ -74,6 +77,10 @@ struct AdaptSpec {
   // stretch trigger: an intact bond at >= beta x the finest level's s0 (None: off)
   std::optional<double> stretch_fraction;
   bool damage_trigger = false;            // damage trigger: delta phi > 0, step redone
+  // Once a bond has broken in a step, the stretch trigger refines only nodes within this many of
+  // their horizons of a cracked node (triggers.hpp, near_cracks); 0: everywhere. Needs the damage
+  // trigger, which then refines what breaks farther away.
+  double stretch_reach = 0.0;
   std::optional<Shape> region;            // refinement allowed only inside
   bool total_energy = false;              // trigger on W + kinetic energy density (Bobaru)
   bool coarsen = false;                   // return quiet refined zones to their parents

@@ -344,7 +344,8 @@ bool Adaptor::step() {
     for (int pass = 0;; ++pass) {
       if (!vv_.step()) return false;
       const std::vector<char>& refinable = this->refinable();
-      const auto ids = damage_trigger(m_, vv_.rows_damaged_by_last_step(), refinable);
+      const auto damaged = vv_.rows_damaged_by_last_step();
+      const auto ids = damage_trigger(m_, damaged, refinable);
       // Damage grew on a node that can still be refined: bonds broke on a coarse level, so the
       // step is undone and redone on the refined grid (thesis Fig. 3.4).
       bool coarse = false;
@@ -365,6 +366,7 @@ bool Adaptor::step() {
       // crack's faces, a band of a coarse horizon along every crack.
       if (!ids.empty() && !spec_.stretch_fraction && vv_.step_count() % spec_.check_every == 0)
         refine(parents_for(ids, &refinable), ids.size(), "damage");
+      cracked_ = cracked_ || !damaged.empty();
       break;
     }
   } else if (!vv_.step()) {
@@ -383,6 +385,7 @@ bool Adaptor::step() {
     } else {
       ids = stretch_trigger(m_, spec_, *spec_.stretch_fraction, refinable);
     }
+    if (cracked_ && spec_.stretch_reach > 0) ids = near_cracks(m_, ids, spec_.stretch_reach);
     refine(parents_for(ids, &refinable), ids.size(), "stretch");
   }
   if (check && owned_check) {
@@ -469,6 +472,7 @@ void Adaptor::save_state(ArchiveWriter& w) const {
     w.put(std::uint64_t{e.bonds});
     w.put(e.dt_stable);
   }
+  w.put<std::uint8_t>(cracked_);
 }
 
 void Adaptor::restore_state(ArchiveReader& r) {
@@ -495,6 +499,7 @@ void Adaptor::restore_state(ArchiveReader& r) {
     r.get(e.dt_stable);
     events_.push_back(std::move(e));
   }
+  cracked_ = r.get<std::uint8_t>() != 0;
   refinable_valid_ = false;
 }
 

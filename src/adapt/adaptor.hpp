@@ -68,6 +68,7 @@ class Adaptor {
   VelocityVerlet& vv_;
   AdaptSpec spec_;
   std::vector<RefinementEvent> events_;
+  bool cracked_ = false;  // a step has broken a bond (the stretch trigger's reach applies)
   // refinable_nodes() of the current node set; it changes only with events.
   const std::vector<char>& refinable();
   std::vector<double> W_;

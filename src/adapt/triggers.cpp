@@ -98,6 +98,26 @@ std::vector<std::uint32_t> stretch_trigger(const Model& m, const AdaptSpec& spec
   return out;
 }
 
+std::vector<std::uint32_t> near_cracks(const Model& m, const std::vector<std::uint32_t>& ids,
+                                       double reach) {
+  const NodeSet& ns = m.nodes;
+  if (ids.empty()) return {};
+  double hmax = 0;
+  for (std::uint32_t i : ids) hmax = std::max(hmax, ns.horizon[i]);
+  std::vector<std::uint32_t> cracked = active_nodes_near(ns, ids, reach * hmax * (1 + 1e-9));
+  std::erase_if(cracked, [&](std::uint32_t j) { return !(ns.broken_weight[j] > 0); });
+  if (cracked.empty()) return {};
+  CellGrid grid(ns.dim, {ns.x[0].data(), ns.x[1].data(), ns.x[2].data()}, cracked, reach * hmax);
+  std::vector<std::uint32_t> out;
+  for (std::uint32_t i : ids) {
+    bool near = false;
+    grid.for_each_within({ns.x[0][i], ns.x[1][i], ns.x[2][i]}, reach * ns.horizon[i] * (1 + 1e-12),
+                         [&](std::uint32_t, double) { near = true; });
+    if (near) out.push_back(i);
+  }
+  return out;
+}
+
 std::vector<std::uint32_t> damage_trigger(const Model& m, const std::vector<std::uint32_t>& damaged,
                                           const std::vector<char>& refinable) {
   const NodeSet& ns = m.nodes;

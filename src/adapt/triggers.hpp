@@ -36,6 +36,16 @@ std::vector<std::uint32_t> stretch_trigger(const Model& m, const AdaptSpec& spec
                                            const std::vector<char>& refinable,
                                            const std::vector<std::uint32_t>* rows = nullptr);
 
+// The stretch trigger's reach once the body cracks: of `ids`, those within `reach` times their own
+// horizon of an active node with a broken or cut bond. Ahead of a tip at its critical load the
+// stretch falls as s0 sqrt(delta / r) (the K field sampled over a horizon), so it passes half the
+// children's s0, the trigger's level, out to r = 2 coarse horizons; a coarse node farther away
+// sits in a smooth field, where both grids see the same stretch and the damage trigger redoes
+// any step that breaks a coarse bond there refined. Without the reach a body loaded through its
+// whole section refines wherever the waves of its cracks pass half the children's s0.
+std::vector<std::uint32_t> near_cracks(const Model& m, const std::vector<std::uint32_t>& ids,
+                                       double reach);
+
 // Damage trigger: of the nodes whose damage grew (`damaged`), those refinable or already refined.
 std::vector<std::uint32_t> damage_trigger(const Model& m, const std::vector<std::uint32_t>& damaged,
                                           const std::vector<char>& refinable);

@@ -238,6 +238,20 @@ void parse_adapt(Section& top, Deck& dk) {
                           dk.solver == Deck::SolverType::Explicit;
     if (defaults) ad.stretch_fraction = kDefaultStretchTrigger;
     ad.damage_trigger = a->boolean("damage_trigger", defaults);
+    ad.stretch_reach = a->number("stretch_reach", defaults ? kDefaultStretchReach : 0.0,
+                                 [](double v) {
+                                   return (v >= 0 && v <= 100)
+                                              ? std::string()
+                                              : std::string("horizons around cracked nodes in "
+                                                            "[0, 100] (0: everywhere)");
+                                 });
+    if (ad.stretch_reach > 0 && !ad.stretch_fraction)
+      a->fail("stretch_reach", "bounds the stretch trigger; give stretch_trigger too (or leave "
+                               "the triggers out for the automatic profile)");
+    if (ad.stretch_reach > 0 && !ad.damage_trigger)
+      a->fail("stretch_reach", "beyond the reach only the damage trigger refines (a step that "
+                               "breaks a coarse bond is redone refined); set damage_trigger: true "
+                               "or stretch_reach: 0");
     ad.refine_crack_tips = a->boolean("refine_crack_tips", defaults);
     ad.refine_motions = a->boolean("refine_motions", defaults);
     // With the automatic triggers the zone follows the stretch field closely, and its interfaces
