@@ -82,6 +82,19 @@ TEST(PreCrack, ACrackThroughNodesOfAnyReachableLevelIsRefused) {
     }
     return std::string();
   };
+  auto refused_a = [](const std::vector<std::vector<double>>& crack, int max_level) {
+    try {
+      build_model(grid(2, 4.0)
+                      .append("cracks", DeckBuilder().set("segment", crack))
+                      .set("adapt.max_level", max_level)
+                      .set("adapt.method", "A")
+                      .set("adapt.energy_trigger", 0.5)
+                      .build("4 x 4 grid, method A"));
+    } catch (const DeckError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
   // Through the node row y = 1.5: its four nodes.
   EXPECT_NE(refused({{0, 1.5}, {4, 1.5}}, 0).find("passes through 4 nodes"), std::string::npos);
   // Ending on the node (0.5, 1.5) only touches it: strictly inside the crack is what bridges
@@ -94,6 +107,15 @@ TEST(PreCrack, ACrackThroughNodesOfAnyReachableLevelIsRefused) {
   EXPECT_EQ(refused({{0, 1.125}, {4, 1.125}}, 1), "");
   EXPECT_NE(refused({{0, 1.125}, {4, 1.125}}, 2).find("of refinement level 2"), std::string::npos);
   EXPECT_EQ(refused({{0, 2}, {4, 2}}, 4), "");
+  // Method A puts its level-1 nodes on the lattice of half the spacing through the nodes, cell
+  // edges included: the edge y = 2 holds 7 of them strictly inside the crack (x = 0.5 ... 3.5,
+  // each shared by the cells on either side and counted once).
+  const std::string edge_a = refused_a({{0, 2}, {4, 2}}, 1);
+  EXPECT_NE(edge_a.find("7 nodes of refinement level 1"), std::string::npos) << edge_a;
+  EXPECT_NE(edge_a.find("0.25 m from a node row"), std::string::npos) << edge_a;
+  EXPECT_EQ(refused_a({{0, 1.75}, {4, 1.75}}, 1), "");
+  EXPECT_NE(refused_a({{0, 1.75}, {4, 1.75}}, 2).find("of refinement level 2"), std::string::npos);
+  EXPECT_EQ(refused_a({{0, 1.625}, {4, 1.625}}, 2), "");
   // 3D: the plane z = 0.5 holds the bottom layer of a 2 x 2 x 2 block.
   const std::vector<std::vector<double>> quad = {{0, 0, 0.5}, {2, 0, 0.5}, {2, 2, 0.5}, {0, 2, 0.5}};
   try {

@@ -91,12 +91,24 @@ double distance_to_crack_carrier(const PreCrack& c, const Vec3& p) {
 
 }  // namespace
 
-std::size_t points_on_precrack(const NodeSet& nodes, const PreCrack& c, int levels, int* level,
-                               Vec3* first) {
+std::size_t points_on_precrack(const NodeSet& nodes, const PreCrack& c, int levels,
+                               const ChildLattice& lattice, int* level, Vec3* first) {
   const int D = nodes.dim;
+  const double cr = std::cos(lattice.rotation), sr = std::sin(lattice.rotation);
   for (int l = 0; l <= levels; ++l) {
-    std::size_t count = 0;
     const int per = 1 << l;  // sub-cells per cell edge
+    // Offsets along each lattice axis, in cell spacings: method B's sub-cell centres; method A's
+    // lattice of spacing 1 / per through the node, its cell's edges included (shared with the
+    // neighbouring cell: the points found are made unique below).
+    std::vector<double> axis;
+    if (l == 0)
+      axis = {0.0};
+    else if (lattice.method_a)
+      for (int j = -per / 2; j <= per / 2; ++j) axis.push_back(static_cast<double>(j) / per);
+    else
+      for (int j = 0; j < per; ++j) axis.push_back(-0.5 + (2.0 * j + 1.0) / (2.0 * per));
+    const int na = static_cast<int>(axis.size());
+    std::vector<Vec3> found;
     for (std::size_t i = 0; i < nodes.size(); ++i) {
       if (!(nodes.flags[i] & kActive)) continue;
       const Vec3 p{nodes.x[0][i], nodes.x[1][i], nodes.x[2][i]};
@@ -105,19 +117,36 @@ std::size_t points_on_precrack(const NodeSet& nodes, const PreCrack& c, int leve
       const double tol = 1e-9 * h / per;
       int k[3] = {0, 0, 0};
       for (;;) {
-        Vec3 q = p;
-        for (int d = 0; d < D; ++d) q[d] += l == 0 ? 0.0 : h * (-0.5 + (2.0 * k[d] + 1.0) / (2.0 * per));
-        if (on_crack(c, q, tol)) {
-          if (count++ == 0 && first) *first = q;
+        double off[3] = {0, 0, 0};
+        for (int d = 0; d < D; ++d) off[d] = h * axis[static_cast<std::size_t>(k[d])];
+        if (D == 2) {
+          const double ox = off[0], oy = off[1];
+          off[0] = cr * ox - sr * oy;
+          off[1] = sr * ox + cr * oy;
         }
+        const Vec3 q{p[0] + off[0], p[1] + off[1], p[2] + off[2]};
+        if (on_crack(c, q, tol)) found.push_back(q);
         int d = 0;
-        while (d < D && ++k[d] == per) k[d++] = 0;
+        while (d < D && ++k[d] == na) k[d++] = 0;
         if (d == D) break;
       }
     }
-    if (count > 0) {
+    if (lattice.method_a && l > 0) {
+      // A point on an edge between two cells is found from both: count it once.
+      const double h0 = nodes.size() ? nodes.spacing[0] : 1.0;
+      const double q = 1e-6 * h0 / per;
+      auto key = [&](const Vec3& v) {
+        return std::array<long long, 3>{std::llround(v[0] / q), std::llround(v[1] / q), std::llround(v[2] / q)};
+      };
+      std::sort(found.begin(), found.end(), [&](const Vec3& x, const Vec3& y) { return key(x) < key(y); });
+      found.erase(std::unique(found.begin(), found.end(),
+                              [&](const Vec3& x, const Vec3& y) { return key(x) == key(y); }),
+                  found.end());
+    }
+    if (!found.empty()) {
       if (level) *level = l;
-      return count;
+      if (first) *first = found.front();
+      return found.size();
     }
   }
   return 0;

@@ -23,12 +23,20 @@ std::size_t apply_precracks(const NodeSet& nodes, BondFamilies& bonds,
                             const std::vector<char>* rows = nullptr,
                             std::vector<std::size_t>* per_crack = nullptr);
 
+// Where refinement puts new nodes in a cell: method B at the sub-cell centres, method A on the
+// lattice of half the spacing through the node (cell edges included); turned by the 2D grid's
+// rotation (radians).
+struct ChildLattice {
+  bool method_a = false;
+  double rotation = 0.0;
+};
+
 // Points lying on crack c (within 1e-9 of their spacing of its line or plane, strictly inside
 // its extent): a node there is on neither side, keeps its bonds to both faces and bridges the
-// crack. The active nodes, and with `levels` > 0 the sub-cell centres that refinement by
-// method B would put in their cells at levels 1 ... levels. Counts the points of the lowest
-// level that has any; `level` and `first` receive that level and its first point.
-std::size_t points_on_precrack(const NodeSet& nodes, const PreCrack& c, int levels, int* level,
-                               Vec3* first);
+// crack. The active nodes, and with `levels` > 0 the points refinement (`lattice`) would put in
+// their cells at levels 1 ... levels. Counts the points of the lowest level that has any;
+// `level` and `first` receive that level and its first point.
+std::size_t points_on_precrack(const NodeSet& nodes, const PreCrack& c, int levels,
+                               const ChildLattice& lattice, int* level, Vec3* first);
 
 }  // namespace periadapt

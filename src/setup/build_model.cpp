@@ -183,14 +183,21 @@ Model build_model(const Deck& dk, const FamilyBuild& families) {
                            block_uniaxial_moduli(m), m.partition.rows_held ? &held : nullptr);
   // A node on a crack is on neither side: it keeps its bonds to both faces and ties them
   // together, a crack that is not one (and which side a node within round-off of the line
-  // falls on would be round-off). Refinement by method B puts children at sub-cell centres:
-  // those of every level the run can reach count too.
-  const int child_levels =
-      dk.adapt.enabled && dk.adapt.method == NodeGeneration::B ? dk.adapt.max_level : 0;
+  // falls on would be round-off). Refinement puts children at sub-cell centres (method B) or on
+  // the half-spacing lattice, cell edges included (method A): those of every level the run can
+  // reach count too.
+  const bool refines = dk.adapt.enabled || !dk.adapt.initial.empty();
+  const int child_levels = refines ? dk.adapt.max_level : 0;
+  const ChildLattice lattice{dk.adapt.method == NodeGeneration::A, qs.lattice_rotation};
+  // Method B's children never lie on a cell edge; method A's lattice has every multiple of
+  // h / 2^max_level: a crack half that far from a node row avoids both.
+  const double clear_offset = lattice.method_a && child_levels > 0
+                                  ? dk.grid.spacing / static_cast<double>(2 << child_levels)
+                                  : 0.5 * dk.grid.spacing;
   for (std::size_t c = 0; c < dk.cracks.size(); ++c) {
     int level = 0;
     Vec3 p{0, 0, 0};
-    const std::size_t on = points_on_precrack(ns, dk.cracks[c], child_levels, &level, &p);
+    const std::size_t on = points_on_precrack(ns, dk.cracks[c], child_levels, lattice, &level, &p);
     if (mpi::max(static_cast<long>(on)) == 0) continue;
     const std::string what = level == 0 ? fmt::format("{} node{}", on, on == 1 ? "" : "s")
                                         : fmt::format("{} node{} of refinement level {}", on,
@@ -200,9 +207,11 @@ Model build_model(const Deck& dk, const FamilyBuild& families) {
     throw DeckError(dk.file, c < dk.crack_at.size() ? dk.crack_at[c] : DeckPlace{"cracks[" + std::to_string(c) + "]"},
                     fmt::format("the pre-crack passes through {}{}: a node on it keeps its bonds "
                                 "to both faces and bridges the crack. Move the crack off the "
-                                "nodes, e.g. onto a cell edge ({:.6g} m from a node row{})",
-                                what, where, 0.5 * dk.grid.spacing,
-                                level > 0 ? ", which no level's nodes lie on" : ""));
+                                "nodes, e.g. {:.6g} m from a node row{}",
+                                what, where, clear_offset,
+                                lattice.method_a && child_levels > 0
+                                    ? " (method a puts nodes on every multiple of the spacing / 2^max_level)"
+                                    : " (onto a cell edge, which no level's nodes lie on)"));
   }
   std::vector<std::size_t> cut_by;
   m.precrack_bonds = apply_precracks(ns, m.bonds, dk.cracks, nullptr, &cut_by);
