@@ -14,4 +14,11 @@ expect() {  # deck, want warning (1/0)
 }
 expect brazilian_disk_pmb.yaml 1
 expect plate_hole_pmb.yaml 0
+# The profile's triggers are spelled out, the stretch trigger's reach once the body cracks included.
+out=$("$bin" check "$decks/plate_hole_pmb.yaml" 2>&1)
+if grep -q "^adapt .*0.5 x the children's critical stretch (once cracked, within 2 horizons of a crack) and damage growth" <<< "$out"; then
+  echo "ok   plate_hole_pmb.yaml: $(grep '^adapt' <<< "$out")"
+else
+  echo "FAIL plate_hole_pmb.yaml: the adapt line does not name the reach: $(grep '^adapt' <<< "$out")"; fail=1
+fi
 exit $fail

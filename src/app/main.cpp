@@ -154,8 +154,12 @@ int check(const std::string& path, const std::vector<std::string>& overrides,
     const AdaptSpec& a = dk.adapt;
     std::string trig;
     if (a.stretch_fraction)
-      trig += fmt::format("bond stretch >= {:.3g} x the children's critical stretch",
-                          *a.stretch_fraction);
+      trig += fmt::format("bond stretch >= {:.3g} x the children's critical stretch{}",
+                          *a.stretch_fraction,
+                          a.stretch_reach > 0
+                              ? fmt::format(" (once cracked, within {:.3g} horizons of a crack)",
+                                            a.stretch_reach)
+                              : std::string());
     if (a.energy_fraction)
       trig += std::string(trig.empty() ? "" : " and ") +
               fmt::format("energy W >= {:.3g} W_max", *a.energy_fraction);
