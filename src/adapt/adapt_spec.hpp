@@ -74,7 +74,7 @@ struct AdaptSpec {
   double start_time = 0.0;          // t_st: no refinement before
   int check_every = 1;              // steps between energy-trigger checks
   std::optional<double> energy_fraction;  // energy trigger W >= alpha W_max (None: off)
-  // stretch trigger: an intact bond at >= beta x the finest level's s0 (None: off)
+  // stretch trigger: an intact bond at >= beta x the s0 of the node's children (one level finer) (None: off)
   std::optional<double> stretch_fraction;
   bool damage_trigger = false;            // damage trigger: delta phi > 0, step redone
   // Once a bond has broken in a step, the stretch trigger refines only nodes within this many of

@@ -220,8 +220,8 @@ int check(const std::string& path, const std::vector<std::string>& overrides,
       fmt::print("forecast        elastic coarse run: {} at t = {:.4g} s; by then the stretch "
                  "trigger would have refined {} of {} refinable nodes, {:.1f}% of the body's "
                  "volume\n",
-                 fc.initiates ? "the first bond reaches the finest level's s0"
-                              : "no bond reaches the finest level's s0 up to end_time",
+                 fc.initiates ? "the first bond reaches its children's s0"
+                              : "no bond reaches its children's s0 up to end_time",
                  fc.time, fc.parents, fc.refinable, 100 * fc.volume_fraction);
       if (fc.volume_fraction > 0.5)
         fmt::print("warning         the run is likely to refine most of the body before a crack "

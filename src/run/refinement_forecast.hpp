@@ -14,7 +14,7 @@ namespace periadapt {
 struct RefinementForecast {
   bool ran = false;             // within the budget, and the deck has a stretch trigger
   double bond_evaluations = 0;  // what the run costs (or would have cost)
-  bool initiates = false;       // a bond reached the finest level's s0 before end_time
+  bool initiates = false;       // a bond reached its children's s0 (one level finer) before end_time
   double time = 0;              // when (or end_time)
   std::size_t parents = 0;      // coarse nodes the trigger would have refined by then
   std::size_t refinable = 0;
