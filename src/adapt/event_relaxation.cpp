@@ -36,9 +36,10 @@ std::vector<std::uint32_t> relax_event_rows(Model& m, const std::vector<std::uin
   const MaterialContext ctx = material_context(m);
   std::vector<double> K(rows.size());
   for (std::size_t r = 0; r < rows.size(); ++r) K[r] = material_stiffness_row(ns, bf, ctx, rows[r]);
-  const bool row_local = m.formulation.row_local();
+  // LPS too: a rows-only pass recomputes the dilatations the rows' forces read.
+  const bool rows_only = m.formulation.refreshes_rows();
   for (int s = 0; s < sweeps; ++s) {
-    if (row_local)
+    if (rows_only)
       internal_forces_rows(m, false, rows);
     else
       internal_forces(m, false);
