@@ -38,6 +38,12 @@ if files != re.findall(r'file="([^"]+)"', open(os.path.join(b, "snapshot.pvd")).
 for f in files:
     if open(os.path.join(a, f), "rb").read() != open(os.path.join(b, f), "rb").read():
         sys.exit(f"{f} differs")
+# The folder holds what the uninterrupted run's holds: no picture or snapshot of the moment the
+# first run stopped is left beside the restarted run's.
+def outputs(d):
+    return sorted(f for f in os.listdir(d) if re.fullmatch(r"damage_.*us\.png|snapshot_\d+\.vtu", f))
+if outputs(a) != outputs(b):
+    sys.exit(f"other pictures or snapshots: {sorted(set(outputs(b)) ^ set(outputs(a)))}")
 timing = {"wall_time_s", "setup_time_s", "solver_time_s", "sampling_time_s",
           "snapshot_output_time_s", "bond_evals_per_s", "family_build_time_s",
           "family_build_in_steps", "peak_rss_bytes", "rss_end_bytes", "refinement_wall_s", "restarted_from_step",

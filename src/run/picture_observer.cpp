@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <set>
 
 #include <fmt/format.h>
 
@@ -10,6 +11,11 @@
 #include "solver/velocity_verlet.hpp"
 
 namespace periadapt {
+
+bool is_damage_picture(const std::string& name) {
+  return name.rfind("damage_", 0) == 0 && name.size() > 13 &&
+         name.compare(name.size() - 6, 6, "us.png") == 0;
+}
 
 PictureObserver::PictureObserver(const RunView& view, double dt) {
   for (double t : view.deck.output.png_times)
@@ -46,7 +52,21 @@ void PictureObserver::save(ArchiveWriter& w) {
 void PictureObserver::restore(ArchiveReader& r, RunView& view) {
   r.tag("PNGS");
   written_.resize(r.get<std::uint64_t>());
-  for (std::string& p : written_) p = view.dir + "/" + r.get<std::string>();
+  std::set<std::string> kept;
+  for (std::string& p : written_) {
+    const std::string name = r.get<std::string>();
+    kept.insert(name);
+    p = view.dir + "/" + name;
+  }
+  if (!view.write_files) return;
+  // The stopped run drew its last state after the checkpoint; the restarted run goes on past it,
+  // so that picture would stand beside the ones an uninterrupted run leaves.
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(view.dir, ec)) {
+    const std::string name = e.path().filename().string();
+    if (is_damage_picture(name) && !kept.count(name)) fs::remove(e.path(), ec);
+  }
 }
 
 void PictureObserver::finish(RunView& view, RunResult& res) {

@@ -6,6 +6,9 @@
 
 namespace periadapt {
 
+// A name this observer gives its pictures (damage_<t>us.png).
+bool is_damage_picture(const std::string& file_name);
+
 class PictureObserver : public RunObserver {
  public:
   explicit PictureObserver(const RunView& view, double dt);

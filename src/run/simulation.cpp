@@ -49,7 +49,7 @@ void remove_earlier_run_outputs(const std::string& dir) {
       const std::size_t n = std::strlen(q);
       return name.size() >= n && name.compare(name.size() - n, n, q) == 0;
     };
-    if ((starts("snapshot_") && ends(".vtu")) || (starts("damage_") && ends("us.png")) ||
+    if ((starts("snapshot_") && ends(".vtu")) || is_damage_picture(name) ||
         name == kCheckpointName || is_checkpoint_piece(name) || name == "refinement.csv" ||
         name == "crack_speed.csv" || name == "crack_speed.png" || name == "load_displacement.png")
       fs::remove(e.path(), ec);
