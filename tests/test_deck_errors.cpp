@@ -147,7 +147,8 @@ TEST(DeckErrors, StretchTriggerIsAFractionOfTheCriticalStretch) {
 }
 
 TEST(DeckErrors, AdaptWithoutTriggersTakesTheDocumentedDefaults) {
-  // adapt: {max_level: N} alone: stretch trigger at 0.5, damage trigger, interface horizons. Naming any trigger switches to the thesis' explicit form.
+  // adapt: {max_level: N} alone: stretch trigger at 0.5, damage trigger, interface horizons,
+  // filled boundary cells (method B). Naming any trigger switches to the thesis' explicit form.
   const Deck d = parse_deck(std::string(kGood) + "adapt: {max_level: 1}\n", "good.yaml");
   ASSERT_TRUE(d.adapt.enabled);
   ASSERT_TRUE(d.adapt.stretch_fraction.has_value());
@@ -155,12 +156,17 @@ TEST(DeckErrors, AdaptWithoutTriggersTakesTheDocumentedDefaults) {
   EXPECT_TRUE(d.adapt.damage_trigger);
   EXPECT_TRUE(d.adapt.interface_horizon);
   EXPECT_TRUE(d.adapt.interface_level_stretch);
+  EXPECT_TRUE(d.adapt.fill_boundary_cells);
   EXPECT_FALSE(d.adapt.energy_fraction.has_value());
+  // Method A places its lattice around each parent: no boundary cells to fill.
+  EXPECT_FALSE(parse_deck(std::string(kGood) + "adapt: {max_level: 1, method: A}\n", "good.yaml")
+                   .adapt.fill_boundary_cells);
   const Deck e = parse_deck(std::string(kGood) + "adapt: {max_level: 1, energy_trigger: 0.5}\n",
                             "good.yaml");
   EXPECT_FALSE(e.adapt.stretch_fraction.has_value());
   EXPECT_FALSE(e.adapt.damage_trigger);
   EXPECT_FALSE(e.adapt.interface_horizon);
+  EXPECT_FALSE(e.adapt.fill_boundary_cells);
 }
 
 TEST(DeckErrors, FractureEnergyAndCriticalStretchAreExclusive) {

@@ -228,11 +228,11 @@ void parse_adapt(Section& top, Deck& dk) {
     if (a->has("stretch_trigger"))
       ad.stretch_fraction = a->number("stretch_trigger", std::nullopt, [](double v) {
         return (v > 0 && v <= 1) ? std::string()
-                                 : std::string("a fraction of the finest level's critical stretch "
-                                               "in (0, 1]");
+                                 : std::string("a fraction of the critical stretch of a node's "
+                                               "children in (0, 1]");
       });
     // A deck that names no trigger and no initial zone gets the triggers that need no tuning:
-    // bonds at half the finest level's critical stretch, and damage growth on a coarse node.
+    // bonds at half their children's critical stretch, and damage growth on a coarse node.
     const bool defaults = !ad.energy_fraction && !ad.stretch_fraction &&
                           !a->has("damage_trigger") && ad.initial.empty() &&
                           dk.solver == Deck::SolverType::Explicit;
@@ -266,7 +266,9 @@ void parse_adapt(Section& top, Deck& dk) {
       a->fail("interface_stretch", "only used with interface_horizon: true");
     ad.refine_loads = a->boolean("refine_loads", defaults && ad.method == NodeGeneration::B);
     ad.interface_fit = a->boolean("interface_fit", false);
-    ad.fill_boundary_cells = a->boolean("fill_boundary_cells", false);
+    // A zone without its boundary cells keeps the coarse grid's staircase at holes and clipped
+    // bodies, whose re-entrant corners break bonds the fine grid keeps.
+    ad.fill_boundary_cells = a->boolean("fill_boundary_cells", defaults && ad.method == NodeGeneration::B);
     if (ad.fill_boundary_cells && ad.method == NodeGeneration::A)
       a->fail("fill_boundary_cells", "fills the empty cells next to method B's parents (method A "
                                      "places its lattice around each parent already); use method B");
