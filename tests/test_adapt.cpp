@@ -1387,6 +1387,61 @@ TEST(Adapt, OnceCrackedTheStretchTriggerRefinesNearCracksOnly) {
   }
 }
 
+TEST(Adapt, RelaxUntilCrackRelaxesTheEventsBeforeTheFirstBrokenBondOnly) {
+  // A plate held at 0.6 of its children's critical stretch (the stretch trigger at 0.5 refines
+  // it in the first step), with a fine zone from the start around one node. Kicked, that node
+  // breaks its fine bonds in the first step, before the trigger's event: with relax_until_crack
+  // the event is not relaxed (the same state as without relax_sweeps, bit for bit); not kicked,
+  // nothing broke and the event is relaxed (a state other than the unrelaxed one).
+  const Vec3 kick{0.0305, 0.0155, 0};
+  auto first_step = [&](int sweeps, bool until_crack, bool kicked) {
+    DeckBuilder a = level_one()
+                        .set("stretch_trigger", 0.5)
+                        .set("damage_trigger", true)
+                        .set("relax_sweeps", sweeps)
+                        .append("initial_refinement",
+                                DeckBuilder()
+                                    .set("region", test::box({0.0265, 0.0115}, {0.0345, 0.0195}))
+                                    .set("level", 1));
+    if (until_crack) a.set("relax_until_crack", true);
+    const Deck dk = test::glass_plate({0.0, 0.0}, {0.06, 0.03})
+                        .set("adapt", a)
+                        .set("solver.end_time", 1e-7)
+                        .build("strained plate");
+    Model m = build_model(dk);
+    NodeSet& ns = m.nodes;
+    double s0 = 0;  // the coarse grid's
+    for (std::size_t i = 0; i < ns.size(); ++i)
+      if (ns.level[i] == 0 && (ns.flags[i] & kActive)) s0 = ns.critical_stretch[i];
+    const double s_child = s0 * std::sqrt(2.0);
+    const double eps[3][3] = {{0.6 * s_child, 0, 0}, {0, 0.6 * s_child, 0}, {0, 0, 0}};
+    test::apply_homogeneous_strain(ns, eps);
+    if (kicked) {
+      std::uint32_t k = 0;
+      double best = INFINITY;
+      for (std::size_t i = 0; i < ns.size(); ++i)
+        if ((ns.flags[i] & kActive) && ns.level[i] == 1) {
+          const double r = std::hypot(ns.x[0][i] - kick[0], ns.x[1][i] - kick[1]);
+          if (r < best) best = r, k = static_cast<std::uint32_t>(i);
+        }
+      EXPECT_LT(best, 4e-4);  // a child of the zone
+      ns.v[1][k] = 500.0;  // 25 um in one step: its bonds break
+    }
+    VelocityVerlet vv(m, 5.0e-8);
+    vv.initialize();
+    Adaptor ad(m, vv, dk.adapt);
+    EXPECT_TRUE(ad.step());
+    EXPECT_EQ(ad.events().size(), 1u);  // the stretch trigger's, after the step's breaks
+    double broken = 0;
+    for (std::size_t i = 0; i < ns.size(); ++i) broken += ns.broken_weight[i];
+    EXPECT_EQ(broken > 0, kicked);
+    return ns.u;
+  };
+  EXPECT_EQ(first_step(5, true, true), first_step(0, false, true));
+  EXPECT_NE(first_step(5, false, true), first_step(0, false, true));
+  EXPECT_NE(first_step(5, true, false), first_step(0, false, false));
+}
+
 // A driven region that holds a whole family (a node all of whose bonds end inside it) carries
 // the fine grid's force on the coarse grid and stays coarse; a small one is refined. (Driven
 // disks of the compact-tension deck, coarse against fine force: radius 0.5 horizon 0.52-0.82,

@@ -87,6 +87,7 @@ struct AdaptSpec {
   double visibility_factor = 1.0;         // visibility radius in horizons of the flagged node
   bool conserve_energy = false;           // rescale rebuilt rows' velocities so events keep K + U
   int relax_sweeps = 0;  // Jacobi sweeps relaxing each event's rebuilt rows (adapt/event_relaxation.hpp)
+  bool relax_until_crack = false;  // relax only the events before a step has broken a bond
   // Loaded nodes are refined with the nodes bonded to them, their children carrying the load
   // (method B; off: loaded nodes are never refined, thesis MSc 2.1).
   bool refine_loads = false;

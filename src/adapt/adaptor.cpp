@@ -196,7 +196,10 @@ void Adaptor::refine(const std::vector<std::uint32_t>& parents, std::size_t iden
     if (m_.formulation.state_based()) reach = rows_and_neighbours(m_, reach, false);
     vv_.sync_nodes(reach);
   }
-  const std::vector<std::uint32_t> moved = relax_event_rows(m_, ev.stats.rebuilt, first_new, spec_.relax_sweeps);
+  // Once bonds break, the short waves near a running tip are the crack's own, not the coarse
+  // grid's error: relaxing them towards a static balance took the energy a tip runs on.
+  const int sweeps = spec_.relax_until_crack && cracked_ ? 0 : spec_.relax_sweeps;
+  const std::vector<std::uint32_t> moved = relax_event_rows(m_, ev.stats.rebuilt, first_new, sweeps);
   if (spec_.conserve_energy) restore_energy(h0, ev.stats.rebuilt);
   std::size_t active = 0;
   for (auto f : m_.nodes.flags) active += (f & kActive) != 0;

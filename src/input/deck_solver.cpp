@@ -325,6 +325,13 @@ void parse_adapt(Section& top, Deck& dk) {
       if (a->has(key) && a->boolean(key, false) && !ad.enabled)
         a->fail(key, "refines before the run for a run's triggers (explicit runs); without a "
                      "trigger give the zone as initial_refinement");
+    ad.relax_until_crack = a->boolean("relax_until_crack", false);
+    if (ad.relax_until_crack && ad.relax_sweeps == 0)
+      a->fail("relax_until_crack", "limits the relaxed events (relax_sweeps) to those before the "
+                                   "first broken bond; give relax_sweeps too");
+    if (ad.relax_until_crack && !ad.damage_trigger)
+      a->fail("relax_until_crack", "the first broken bond is seen by the damage trigger; set "
+                                   "damage_trigger: true (or leave the triggers out)");
     if (ad.relax_sweeps > 0 && !ad.enabled)
       a->fail("relax_sweeps", "relaxes the events of a run's triggers; initial_refinement zones "
                               "are made before any field exists (give a trigger, or leave it out)");
